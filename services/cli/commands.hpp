@@ -1,0 +1,9 @@
+#pragma once
+// Registration of the `ambid` subcommands; each is defined in its own file.
+#include <CLI/CLI.hpp>
+
+namespace ambid::cli {
+
+void add_sim_command(CLI::App& app);
+
+}  // namespace ambid::cli
