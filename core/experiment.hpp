@@ -1,7 +1,10 @@
 #pragma once
 // An experiment: uniformly sampled plant data plus what is known about the plant and the
 // controller that closed the loop (experiment-format.md, version 1). Values are absolute, in SI
-// units, as in the files; `deviations()` gives them relative to the operating point.
+// units, as in the files; the *_deviation() methods give them relative to the operating point.
+//
+// Error messages name the offending field by its sidecar key path (`signals.u`,
+// `controller.B`, `operating_point.x`), so the file reader only has to prefix the file name.
 #include <map>
 #include <optional>
 #include <string>
@@ -25,8 +28,10 @@ struct StateSpaceController {
   Eigen::VectorXd initial_state;  // empty means zero
 
   Eigen::Index states() const { return A.rows(); }
-  // Throws Error when dimensions disagree, an entry is not finite, or D has a non-zero column
-  // for a signal in `plant_inputs` (an algebraic loop through u).
+  // Throws Error when the kind is not "state_space", the sample time is not positive and
+  // finite, inputs/outputs are empty or repeat a name, an output is not in `plant_inputs`,
+  // dimensions disagree, an entry is not finite, or D has a non-zero column for a signal in
+  // `plant_inputs` (an algebraic loop through u).
   void validate(const std::vector<std::string>& plant_inputs) const;
 };
 
@@ -35,22 +40,36 @@ struct PlantDescription {
   std::map<std::string, double> parameters;   // nominal values the model believes
 };
 
+// Sampling is uniform when every step t[k] - t[k-1] is within this fraction of sample_time.
+inline constexpr double kSamplingTolerance = 0.01;
+
+// The first index k >= 1 whose step t[k] - t[k-1] is outside sample_time * (1 +- 1 %), or
+// nullopt when the sampling is uniform.
+std::optional<Eigen::Index> find_sampling_gap(const Eigen::VectorXd& t, double sample_time);
+
 struct Experiment {
   std::string name;
   double sample_time = 0.0;
   PlantDescription plant;
   std::vector<std::string> y_names, u_names, r_names;  // r_names empty: no excitation recorded
-  std::map<std::string, double> operating_point;       // missing signal: operating value 0
+  // Every y and u signal has an entry (validate() insists); r signals default to 0. Entries
+  // for names that are no signal are kept (they may describe ignored CSV columns).
+  std::map<std::string, double> operating_point;
   std::optional<StateSpaceController> controller;
 
   Eigen::VectorXd t;     // seconds, one entry per sample
   Eigen::MatrixXd y, u, r;  // samples x signals, absolute values, columns in *_names order
 
-  nlohmann::json extra;  // unknown sidecar keys, kept so a rewrite loses nothing
+  // Unknown sidecar keys, kept so a rewrite loses nothing. Mirrors the sidecar: top-level
+  // unknown keys at the top, unknown keys inside `plant`, `signals` or `controller` under an
+  // object of that name. It never holds a key the format defines.
+  nlohmann::json extra;
 
   Eigen::Index samples() const { return t.size(); }
   bool has_excitation() const { return !r_names.empty(); }
-  double operating_value(const std::string& signal) const;
+  // y, then u, then r names: the CSV column order after `t`.
+  std::vector<std::string> signal_names() const;
+  double operating_value(const std::string& signal) const;  // 0 when not listed
   Eigen::VectorXd operating_values(const std::vector<std::string>& signals) const;
 
   // Signals minus their operating values, same layout as y, u, r.
@@ -61,7 +80,11 @@ struct Experiment {
   // The column of any named y/u/r signal (absolute). Throws Error for an unknown name.
   Eigen::VectorXd signal(const std::string& name) const;
 
-  // Throws Error naming the first violation of the contract (dimensions, names, sampling).
+  // Throws Error naming the first violation of the contract among the sidecar fields
+  // (names, sample time, parameters, operating point, controller, extra); ignores samples.
+  void validate_metadata() const;
+  // validate_metadata() plus the samples: at least 2, matrix shapes match the names, all
+  // finite, t strictly increasing and uniform within kSamplingTolerance.
   void validate() const;
 };
 

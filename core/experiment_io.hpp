@@ -3,11 +3,17 @@
 // No printing: warnings (e.g. ignored extra CSV columns) are returned to the caller.
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "core/experiment.hpp"
 
 namespace ambid {
+
+// The value of the sidecar's `format` key that this version reads and writes.
+inline constexpr std::string_view kExperimentFormat = "ambid-experiment/1";
 
 struct ReadOptions {
   // Accept non-uniform sampling by linear interpolation onto the sidecar's sample_time grid.
@@ -15,8 +21,8 @@ struct ReadOptions {
 };
 
 struct ReadResult {
-  Experiment experiment;
-  std::vector<std::string> warnings;
+  Experiment experiment;                // passes Experiment::validate()
+  std::vector<std::string> warnings;    // each names its file
 };
 
 // `path` may name the .json sidecar, the .csv, or the stem without extension.
@@ -24,10 +30,13 @@ struct ReadResult {
 ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions& options = {});
 
 // Writes `stem.csv` and `stem.json` (creating the parent directory); `stem` may carry either
-// extension or none. Validates first and writes nothing for an invalid experiment.
+// extension or none. Validates first and writes nothing for an invalid experiment. Each file
+// is replaced atomically (temporary file, fsync, rename): never left half written. Numbers
+// are written in their shortest round-trip form, so reading back gives identical doubles.
 void write_experiment(const Experiment& experiment, const std::filesystem::path& stem);
 
-// The sidecar alone, as JSON (used by the writer and by tools that publish metadata).
+// The sidecar alone, as JSON (used by the writer and by tools that publish metadata), with
+// the keys of Experiment::extra merged back in. Throws Error if validate_metadata() fails.
 nlohmann::json sidecar_json(const Experiment& experiment);
 
 }  // namespace ambid

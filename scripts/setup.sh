@@ -7,6 +7,8 @@ packages=(
   libeigen3-dev libceres-dev
   nlohmann-json3-dev libcli11-dev libspdlog-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
+  iproute2 procps
 )
 
 missing=()

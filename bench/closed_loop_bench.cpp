@@ -1,0 +1,38 @@
+// Closed-loop simulation speed of amb1dof_voltage at 10 kHz: simulated seconds per wall
+// second on one core (counter `realtime_factor`). Target: >= 1000.
+#include <benchmark/benchmark.h>
+
+#include "plant_sim/scenario.hpp"
+
+namespace {
+
+void run(benchmark::State& state, bool noisy) {
+  ambid::sim::ScenarioOptions o;
+  o.duration = 1.0;
+  o.sample_time = 1e-4;
+  o.excitation = "prbs";
+  if (noisy) {
+    o.position_noise = 1e-7;
+    o.current_noise = 1e-4;
+    o.force_noise = 0.1;
+  }
+  const ambid::sim::Scenario s = ambid::sim::build_scenario(o);
+  for (auto _ : state) {
+    auto e = ambid::sim::run_closed_loop(*s.truth, s.header, s.options);
+    benchmark::DoNotOptimize(e.y.data());
+  }
+  state.counters["realtime_factor"] =
+      benchmark::Counter(o.duration * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["samples_per_s"] =
+      benchmark::Counter(double(s.options.samples) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void BM_Amb1dofClosedLoop(benchmark::State& state) { run(state, false); }
+void BM_Amb1dofClosedLoopNoisy(benchmark::State& state) { run(state, true); }
+
+BENCHMARK(BM_Amb1dofClosedLoop)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Amb1dofClosedLoopNoisy)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

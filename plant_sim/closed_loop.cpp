@@ -1,0 +1,168 @@
+#include "plant_sim/closed_loop.hpp"
+
+#include <algorithm>
+#include <random>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "plant_sim/integrator.hpp"
+
+namespace ambid::sim {
+namespace {
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// Where each controller input comes from at sample k.
+enum class Source { output, input, excitation };
+struct InputRoute {
+  Source source;
+  Eigen::Index index;
+};
+
+InputRoute route_of(const std::string& name, const Experiment& header) {
+  auto find = [&](const std::vector<std::string>& names) {
+    return std::find(names.begin(), names.end(), name) - names.begin();
+  };
+  if (auto i = find(header.y_names); i < std::ssize(header.y_names)) return {Source::output, i};
+  if (auto i = find(header.u_names); i < std::ssize(header.u_names)) return {Source::input, i};
+  if (auto i = find(header.r_names); i < std::ssize(header.r_names)) return {Source::excitation, i};
+  throw Error("closed loop: controller input '" + name + "' is not a signal of the experiment (y: " +
+              join(header.y_names) + "; u: " + join(header.u_names) + "; r: " + join(header.r_names) + ")");
+}
+
+void check_names(const char* what, const std::vector<std::string>& header_names,
+                 const std::vector<std::string>& plant_names) {
+  if (header_names != plant_names)
+    throw Error(std::string("closed loop: experiment ") + what + " signals (" + join(header_names) +
+                ") must be the plant's (" + join(plant_names) + ")");
+}
+
+void check_size(const char* what, const Eigen::VectorXd& v, Eigen::Index expected) {
+  if (v.size() != 0 && v.size() != expected)
+    throw Error(std::string("closed loop: ") + what + " has " + std::to_string(v.size()) +
+                " entries, expected " + std::to_string(expected));
+  if (v.size() != 0 && !v.allFinite()) throw Error(std::string("closed loop: ") + what + " is not finite");
+}
+
+}  // namespace
+
+Experiment run_closed_loop(const Plant& truth, const Experiment& header, const ClosedLoopOptions& options,
+                           ClosedLoopStatistics* statistics) {
+  if (!header.controller) throw Error("closed loop: the experiment has no controller");
+  const StateSpaceController& ctrl = *header.controller;
+  ctrl.validate(header.u_names);
+  check_names("y", header.y_names, truth.output_names());
+  check_names("u", header.u_names, truth.input_names());
+  if (ctrl.outputs != header.u_names)
+    throw Error("closed loop: controller outputs (" + join(ctrl.outputs) + ") must be the plant inputs (" +
+                join(header.u_names) + ")");
+  const double dt = header.sample_time;
+  if (!(dt > 0.0)) throw Error("closed loop: sample_time must be positive, got " + std::to_string(dt));
+  if (std::abs(ctrl.sample_time - dt) > 1e-9 * dt)
+    throw Error("closed loop: controller sample_time " + std::to_string(ctrl.sample_time) +
+                " differs from the experiment's " + std::to_string(dt));
+  if (options.samples < 1) throw Error("closed loop: samples must be at least 1, got " + std::to_string(options.samples));
+
+  const Eigen::Index ny = std::ssize(header.y_names), nu = std::ssize(header.u_names);
+  const Eigen::Index nw = std::ssize(truth.disturbance_names());
+  const Eigen::Index nr = std::ssize(header.r_names), N = options.samples;
+  const bool excited = options.excitation.size() != 0;
+  if (excited != (nr != 0))
+    throw Error("closed loop: excitation given for " + std::to_string(nr) +
+                " named excitation signals; give both or neither");
+  if (excited && (options.excitation.rows() != N || options.excitation.cols() != nu || nr != nu))
+    throw Error("closed loop: excitation must be " + std::to_string(N) + "x" + std::to_string(nu) +
+                " (samples x plant inputs) with one r name per input, got " +
+                std::to_string(options.excitation.rows()) + "x" + std::to_string(options.excitation.cols()));
+  if (excited && !options.excitation.allFinite()) throw Error("closed loop: excitation is not finite");
+  check_size("measurement_noise_std", options.measurement_noise_std, ny);
+  check_size("process_noise_std", options.process_noise_std, nw);
+  check_size("input_lower", options.input_lower, nu);
+  check_size("input_upper", options.input_upper, nu);
+  const bool limited = options.input_lower.size() != 0 || options.input_upper.size() != 0;
+  const Eigen::VectorXd lower = options.input_lower.size() ? options.input_lower
+                                                           : Eigen::VectorXd::Constant(nu, -INFINITY);
+  const Eigen::VectorXd upper = options.input_upper.size() ? options.input_upper
+                                                           : Eigen::VectorXd::Constant(nu, INFINITY);
+  const int substeps = options.substeps > 0 ? options.substeps : kDefaultSubsteps;
+
+  std::vector<InputRoute> routes;
+  for (const auto& name : ctrl.inputs) routes.push_back(route_of(name, header));
+
+  const Eigen::VectorXd y_op = header.operating_values(header.y_names);
+  const Eigen::VectorXd u_op = header.operating_values(header.u_names);
+  const Eigen::VectorXd r_op = header.operating_values(header.r_names);
+
+  // Start at the nominal operating point: named states take their operating value.
+  Eigen::VectorXd x = truth.equilibrium_state();
+  const auto state_names = truth.state_names();
+  for (std::size_t i = 0; i < state_names.size(); ++i)
+    if (header.operating_point.count(state_names[i])) x(Eigen::Index(i)) = header.operating_point.at(state_names[i]);
+  Eigen::VectorXd xc = ctrl.initial_state.size() ? ctrl.initial_state : Eigen::VectorXd::Zero(ctrl.states());
+
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const bool measurement_noise = options.measurement_noise_std.size() != 0;
+  const bool process_noise = options.process_noise_std.size() != 0;
+
+  Experiment out = header;
+  out.t.resize(N);
+  out.y.resize(N, ny);
+  out.u.resize(N, nu);
+  out.r.resize(excited ? N : 0, nr);
+
+  Eigen::VectorXd y(ny), dy(ny), du(nu), u_applied(nu), w = Eigen::VectorXd::Zero(nw);
+  Eigen::VectorXd v(std::ssize(ctrl.inputs)), xc_next(ctrl.states());
+  Eigen::Index saturated = 0;
+  for (Eigen::Index k = 0; k < N; ++k) {
+    y = truth.output(x);
+    if (measurement_noise)
+      for (Eigen::Index i = 0; i < ny; ++i) y(i) += options.measurement_noise_std(i) * normal(rng);
+    dy = y - y_op;
+
+    // uf = C xc + D v needs v, whose u entries need uf: D has zero u columns (validated), so
+    // evaluate uf with those entries zero, then fill them in for the state update.
+    for (std::size_t j = 0; j < routes.size(); ++j) {
+      const auto [source, i] = routes[j];
+      v(Eigen::Index(j)) = source == Source::output ? dy(i)
+                           : source == Source::excitation ? options.excitation(k, i)
+                                                          : 0.0;
+    }
+    du.noalias() = ctrl.C * xc + ctrl.D * v;
+    if (excited) du += options.excitation.row(k).transpose();
+    for (std::size_t j = 0; j < routes.size(); ++j)
+      if (routes[j].source == Source::input) v(Eigen::Index(j)) = du(routes[j].index);
+
+    out.t(k) = double(k) * dt;
+    out.y.row(k) = y.transpose();
+    out.u.row(k) = (u_op + du).transpose();
+    if (excited) out.r.row(k) = (r_op + options.excitation.row(k).transpose()).transpose();
+
+    u_applied = (u_op + du).cwiseMax(lower).cwiseMin(upper);
+    if (limited && (u_applied.array() != (u_op + du).array()).any()) ++saturated;
+    if (process_noise)
+      for (Eigen::Index i = 0; i < nw; ++i) w(i) = options.process_noise_std(i) * normal(rng);
+    try {
+      x = integrate_sample(truth, x, u_applied, w, dt, substeps);
+    } catch (const Error& e) {
+      std::ostringstream msg;
+      msg << "closed loop: at t = " << out.t(k) << " s: " << e.what();
+      throw Error(msg.str());
+    }
+    if (!x.allFinite()) {
+      std::ostringstream msg;
+      msg << "closed loop: the plant state became non-finite at t = " << out.t(k) << " s (unstable loop?)";
+      throw Error(msg.str());
+    }
+    xc_next.noalias() = ctrl.A * xc + ctrl.B * v;
+    xc.swap(xc_next);
+  }
+  if (statistics) statistics->saturated_samples = saturated;
+  return out;
+}
+
+}  // namespace ambid::sim

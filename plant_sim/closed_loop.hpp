@@ -1,0 +1,44 @@
+#pragma once
+// The closed-loop runner: the true (nonlinear) plant integrated between samples, the recorded
+// discrete controller of the experiment sidecar, zero-order hold, measurement and process
+// noise, actuator limits. It produces an experiment that any reader can replay: the y columns
+// are what the controller received, the u columns what it commanded (experiment-format.md).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/experiment.hpp"
+#include "plant_sim/plant.hpp"
+
+namespace ambid::sim {
+
+struct ClosedLoopOptions {
+  Eigen::Index samples = 0;
+  int substeps = 0;  // integrator sub-steps per sample; 0 means kDefaultSubsteps
+  // Excitation r added to the controller output, deviations, samples x controller outputs, in
+  // the order of the controller's `outputs`. Empty: no excitation is recorded.
+  Eigen::MatrixXd excitation;
+  Eigen::VectorXd measurement_noise_std;  // per plant output, absolute units; empty: none
+  Eigen::VectorXd process_noise_std;      // per plant disturbance; empty: none
+  Eigen::VectorXd input_lower, input_upper;  // absolute actuator limits; empty: none
+  std::uint64_t seed = 0;
+};
+
+struct ClosedLoopStatistics {
+  Eigen::Index saturated_samples = 0;  // samples where at least one input hit its limit
+};
+
+// Runs `truth` in closed loop with `header.controller` and returns `header` with t, y, u, r
+// filled. `header` supplies everything else: name, sample_time, the nominal plant description,
+// operating point, and signal names (y = truth outputs, u = truth inputs, r = one excitation
+// name per controller output, or empty). The plant starts at the nominal operating point
+// (the operating_point values of its states where named, else the truth's equilibrium) and
+// the controller at its initial_state (or zero).
+// Throws Error on inconsistent names or dimensions, and when the plant leaves its valid
+// region (e.g. the rotor touches the bearing), naming the time.
+Experiment run_closed_loop(const Plant& truth, const Experiment& header,
+                           const ClosedLoopOptions& options, ClosedLoopStatistics* statistics = nullptr);
+
+}  // namespace ambid::sim

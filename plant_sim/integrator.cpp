@@ -1,0 +1,72 @@
+#include "plant_sim/integrator.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace ambid::sim {
+namespace {
+
+void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+  if (v.size() != n) {
+    std::ostringstream msg;
+    msg << "integrate_sample: " << what << " must have " << n << " entries, got " << v.size();
+    throw Error(msg.str());
+  }
+}
+
+}  // namespace
+
+Rk4Integrator::Rk4Integrator(const Plant& plant)
+    : plant_(plant),
+      inputs_(static_cast<Eigen::Index>(plant.input_names().size())),
+      disturbances_(static_cast<Eigen::Index>(plant.disturbance_names().size())) {
+  const auto n = static_cast<Eigen::Index>(plant.state_names().size());
+  k1_.resize(n);
+  k2_.resize(n);
+  k3_.resize(n);
+  k4_.resize(n);
+  xt_.resize(n);
+}
+
+void Rk4Integrator::integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& u,
+                                     const Eigen::VectorXd& w, double sample_time, int substeps) {
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time)) {
+    std::ostringstream msg;
+    msg << "integrate_sample: sample time must be positive and finite, got " << sample_time;
+    throw Error(msg.str());
+  }
+  if (substeps < 1)
+    throw Error("integrate_sample: substeps must be at least 1, got " + std::to_string(substeps));
+  require_size(x, xt_.size(), "state");
+  require_size(u, inputs_, "input");
+  require_size(w, disturbances_, "disturbance");
+
+  const double h = sample_time / substeps;
+  auto eval = [&](Eigen::VectorXd& k, const Eigen::VectorXd& at) {
+    k = plant_.derivative(at, u, w);  // move-assigned: no copy
+    require_size(k, xt_.size(), "plant derivative");
+  };
+  for (int s = 0; s < substeps; ++s) {
+    eval(k1_, x);
+    xt_ = x + (0.5 * h) * k1_;
+    eval(k2_, xt_);
+    xt_ = x + (0.5 * h) * k2_;
+    eval(k3_, xt_);
+    xt_ = x + h * k3_;
+    eval(k4_, xt_);
+    x += (h / 6.0) * (k1_ + 2.0 * (k2_ + k3_) + k4_);
+  }
+}
+
+Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x,
+                                 const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                 double sample_time, int substeps) {
+  Eigen::VectorXd out = x;
+  Rk4Integrator(plant).integrate_sample(out, u, w, sample_time, substeps);
+  return out;
+}
+
+}  // namespace ambid::sim
