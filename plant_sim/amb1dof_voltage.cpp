@@ -55,6 +55,30 @@ Eigen::Vector4d Amb1dofVoltage::derivative(const Eigen::Vector4d& x, const Eigen
   return {vel, force / p_.m, di1, di2};
 }
 
+void Amb1dofVoltage::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                             double sample_time, int substeps) const {
+  require_size(x, 4, "state (x, x_dot, i1, i2)");
+  require_size(u, 2, "input (u1, u2)");
+  require_size(w, 1, "disturbance (Fz)");
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time) || substeps < 1) {
+    std::ostringstream msg;
+    msg << "amb1dof_voltage: sample time must be positive and substeps at least 1, got " << sample_time
+        << " s and " << substeps;
+    throw Error(msg.str());
+  }
+  const Eigen::Vector2d u2(u);
+  const double Fz = w[0], h = sample_time / substeps;
+  Eigen::Vector4d s(x);
+  for (int k = 0; k < substeps; ++k) {
+    const Eigen::Vector4d k1 = derivative(s, u2, Fz);
+    const Eigen::Vector4d k2 = derivative(Eigen::Vector4d(s + 0.5 * h * k1), u2, Fz);
+    const Eigen::Vector4d k3 = derivative(Eigen::Vector4d(s + 0.5 * h * k2), u2, Fz);
+    const Eigen::Vector4d k4 = derivative(Eigen::Vector4d(s + h * k3), u2, Fz);
+    s += (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4);
+  }
+  x = s;
+}
+
 Eigen::VectorXd Amb1dofVoltage::derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                            const Eigen::VectorXd& w) const {
   require_size(x, 4, "state (x, x_dot, i1, i2)");

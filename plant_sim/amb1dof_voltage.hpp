@@ -35,6 +35,11 @@ class Amb1dofVoltage : public Plant {
                              const Eigen::VectorXd& w) const override;
   Eigen::VectorXd output(const Eigen::VectorXd& x) const override;
 
+  // RK4 on the fixed-size right-hand side: the same scheme as Rk4Integrator, without heap
+  // allocation (the closed-loop runner's hot path).
+  void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+               double sample_time, int substeps) const override;
+
   // Allocation-free right-hand side for fixed-size callers (same equations and checks).
   Eigen::Vector4d derivative(const Eigen::Vector4d& x, const Eigen::Vector2d& u, double Fz) const;
 

@@ -147,7 +147,7 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
     if (process_noise)
       for (Eigen::Index i = 0; i < nw; ++i) w(i) = options.process_noise_std(i) * normal(rng);
     try {
-      x = integrate_sample(truth, x, u_applied, w, dt, substeps);
+      truth.advance(x, u_applied, w, dt, substeps);
     } catch (const Error& e) {
       std::ostringstream msg;
       msg << "closed loop: at t = " << out.t(k) << " s: " << e.what();

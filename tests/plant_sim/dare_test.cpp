@@ -38,11 +38,11 @@ Eigen::MatrixXd riccati_recursion(const Eigen::MatrixXd& A, const Eigen::MatrixX
                                   const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
                                   const Eigen::MatrixXd& N) {
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(A.rows(), A.rows());
-  for (int k = 0; k < 20000; ++k) {
+  for (int k = 0; k < 2000; ++k) {
     const Eigen::MatrixXd cross = A.transpose() * X * B + N;
     const Eigen::MatrixXd gain = (R + B.transpose() * X * B).inverse() * cross.transpose();
     const Eigen::MatrixXd next = A.transpose() * X * A - cross * gain + Q;
-    X = next;
+    X = 0.5 * (next + next.transpose());  // unsymmetrised, rounding grows in the skew part
   }
   return X;
 }

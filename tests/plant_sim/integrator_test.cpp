@@ -1,8 +1,6 @@
 #include "plant_sim/integrator.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <iostream>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -90,6 +88,8 @@ TEST(Integrator, LinearPlantMatchesExactZeroOrderHold) {
   EXPECT_LT((next - truth).norm() / truth.norm(), 1e-10);
 }
 
+// The free function goes through the model's allocation-free advance(); the workspace
+// integrator through the generic right-hand side: the same RK4 scheme, to rounding.
 TEST(Integrator, WorkspaceAndFreeFunctionAgree) {
   const Amb1dofVoltage plant;
   Eigen::VectorXd x = plant.equilibrium_state();
@@ -98,7 +98,7 @@ TEST(Integrator, WorkspaceAndFreeFunctionAgree) {
   const Eigen::VectorXd a = integrate_sample(plant, x, u, w, kSampleTime);
   Rk4Integrator rk4(plant);
   rk4.integrate_sample(x, u, w, kSampleTime);
-  EXPECT_EQ(a, x);
+  for (Eigen::Index i = 0; i < 4; ++i) EXPECT_NEAR(a[i], x[i], 1e-14 * std::max(1.0, std::abs(x[i])));
 }
 
 TEST(Integrator, RefusesBadArgumentsAndSurfacesTouchdown) {
@@ -120,21 +120,6 @@ TEST(Integrator, RefusesBadArgumentsAndSurfacesTouchdown) {
         for (int k = 0; k < 1000; ++k) rk4.integrate_sample(state, Eigen::Vector2d(100.0, 0.0), w, 1e-4);
       },
       ::testing::ThrowsMessage<Error>(HasSubstr("rotor touched the bearing")));
-}
-
-TEST(Integrator, SampleCostOnTheAmb) {
-  const Amb1dofVoltage plant;
-  Eigen::VectorXd x = plant.equilibrium_state();
-  const Eigen::VectorXd u = plant.equilibrium_input(), w = Eigen::VectorXd::Zero(1);
-  Rk4Integrator rk4(plant);
-  constexpr int kRuns = 20000;
-  const auto start = std::chrono::steady_clock::now();
-  for (int k = 0; k < kRuns; ++k) rk4.integrate_sample(x, u, w, kSampleTime);
-  const double ns =
-      std::chrono::duration<double, std::nano>(std::chrono::steady_clock::now() - start).count() / kRuns;
-  std::cout << "integrate_sample (" << kDefaultSubsteps << " substeps): " << ns << " ns per sample\n";
-  EXPECT_LT(ns, 20000.0);  // generous: a shared machine; the budget is 100 us with the controller
-  EXPECT_LT((x - plant.equilibrium_state()).norm(), 1e-12);  // stays at rest
 }
 
 }  // namespace

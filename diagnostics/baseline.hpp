@@ -1,0 +1,54 @@
+#pragma once
+// The baseline of one parameter of one plant: its nominal value and how much its estimates
+// scatter when nothing changes. Change detection works on z = (value - mean) / sigma_eff.
+//
+// Learned from the first N windows:
+//   mean           arithmetic mean of the N values
+//   reported_sigma median of the N reported sigmas (what the identifier claims)
+//   observed       1.4826 * median absolute deviation of the values (robust scatter, = sd for
+//                  Gaussian values, unmoved by a few outliers)
+//   extra_spread   tau = sqrt(max(0, observed^2 - reported_sigma^2)): scatter the reported
+//                  sigmas do not explain (operating conditions, model error); 0 when the
+//                  identifier's sigmas are honest or pessimistic
+//   mean_sigma     max(observed, reported_sigma) / sqrt(N), the standard error of the mean
+// and then sigma_eff = sqrt(sigma^2 + tau^2) for an estimate reporting sigma: the reported
+// uncertainty of that window, widened by the scatter it does not account for.
+// Given explicitly (a data sheet, a commissioning measurement): the mean and optionally tau,
+// with mean_sigma = 0.
+#include <cstddef>
+#include <span>
+#include <string_view>
+
+namespace ambid::diag {
+
+enum class BaselineOrigin { learned, given };
+std::string_view to_string(BaselineOrigin origin);  // "learned", "given"
+BaselineOrigin parse_baseline_origin(std::string_view text);
+
+struct Baseline {
+  double mean = 0.0;
+  double extra_spread = 0.0;
+  double mean_sigma = 0.0;
+  double reported_sigma = 0.0;  // 0 when given
+  std::size_t windows = 0;      // 0 when given
+  BaselineOrigin origin = BaselineOrigin::given;
+
+  // Throws Error when mean is zero or not finite (changes are relative to it), or a spread is
+  // negative or not finite.
+  void validate() const;
+  double sigma_eff(double sigma) const;
+  double z(double value, double sigma) const { return (value - mean) / sigma_eff(sigma); }
+  double relative_change(double value) const { return (value - mean) / mean; }
+};
+
+// Throws Error for a zero mean or a negative or non-finite extra spread.
+Baseline given_baseline(double mean, double extra_spread = 0.0);
+
+constexpr std::size_t kMinLearningWindows = 5;
+
+// Learns from values[i] with reported sigmas[i]. Throws InsufficientData for fewer than
+// kMinLearningWindows windows and Error for unequal lengths, a non-finite value, a sigma
+// that is not positive, or a zero mean.
+Baseline learn_baseline(std::span<const double> values, std::span<const double> sigmas);
+
+}  // namespace ambid::diag

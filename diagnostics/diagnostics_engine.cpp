@@ -1,0 +1,170 @@
+#include "diagnostics/diagnostics_engine.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/error.hpp"
+
+namespace ambid::diag {
+namespace {
+
+Alert make_alert(double time, const std::string& plant_id, const std::string& parameter, Level level,
+                 std::string fault, std::optional<int> channel, double value, const std::optional<Baseline>& baseline,
+                 std::string message) {
+  Alert a;
+  a.time = time;
+  a.plant_id = plant_id;
+  a.level = level;
+  a.fault = std::move(fault);
+  a.channel = channel;
+  a.parameter = parameter;
+  a.value = value;
+  if (baseline) a.baseline = baseline->mean;
+  a.message = std::move(message);
+  return a;
+}
+
+}  // namespace
+
+void EngineConfig::validate() const {
+  monitor.validate();
+  policy.validate();
+  isolation.validate();
+}
+
+DiagnosticsEngine::DiagnosticsEngine(TrendStore& store, const EngineConfig& config)
+    : store_(store), config_(config) {
+  config_.validate();
+}
+
+DiagnosticsEngine::Series& DiagnosticsEngine::series(SeriesMap& map, const std::string& plant_id,
+                                                     const std::string& parameter) const {
+  const Key key{plant_id, parameter};
+  auto it = map.find(key);
+  if (it == map.end()) {
+    const ParameterRole role = parameter_role(parameter);
+    it = map.emplace(key, Series(SeriesMonitor(config_.monitor, store_.baseline(plant_id, parameter)), role)).first;
+  }
+  return it->second;
+}
+
+std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> windows) {
+  for (const EstimateWindow& w : windows) {
+    w.validate();
+    for (const ParameterEstimate& e : w.estimates) parameter_role(e.parameter);
+  }
+  SeriesMap next = series_;
+  Batch batch;
+  batch.windows.assign(windows.begin(), windows.end());
+  for (const EstimateWindow& w : windows) {
+    for (const ParameterEstimate& e : w.estimates) {
+      Series& s = series(next, w.plant_id, e.parameter);
+      if (s.monitor.update(w.time, e.value, e.sigma))
+        batch.baselines.push_back({w.plant_id, e.parameter, *s.monitor.baseline(), w.time});
+      s.last_time = w.time;
+      s.last_value = e.value;
+    }
+    mark_stale(next, w.plant_id, w.time, batch.alerts);
+    evaluate(next, w.plant_id, w.time, batch.alerts);
+  }
+  store_.write(batch);
+  series_ = std::move(next);
+  return batch.alerts;
+}
+
+std::vector<Alert> DiagnosticsEngine::check_stale(double now) {
+  if (!std::isfinite(now)) throw Error("diagnostics: staleness check time is not finite");
+  SeriesMap next = series_;
+  Batch batch;
+  mark_stale(next, std::nullopt, now, batch.alerts);
+  if (!batch.alerts.empty()) store_.write(batch);
+  series_ = std::move(next);
+  return batch.alerts;
+}
+
+void DiagnosticsEngine::mark_stale(SeriesMap& map, const std::optional<std::string>& plant_id, double now,
+                                   std::vector<Alert>& alerts) const {
+  for (auto& [key, s] : map) {
+    if (plant_id && key.first != *plant_id) continue;
+    if (!s.last_time || s.level == Level::stale) continue;
+    const double silent_for = now - *s.last_time;
+    if (!(silent_for > config_.policy.stale_timeout)) continue;
+    s.level = Level::stale;
+    s.fault = std::string(s.role.fault);
+    s.channel = s.role.channel;
+    alerts.push_back(make_alert(now, key.first, key.second, Level::stale, s.fault, s.channel, s.last_value,
+                                s.monitor.baseline(),
+                                stale_message(s.role.subject, silent_for, config_.policy.stale_timeout)));
+  }
+}
+
+void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, double time,
+                                 std::vector<Alert>& alerts) const {
+  struct Current {
+    const Key* key;
+    Series* series;
+    SeriesStatus status;
+    Level level;
+  };
+  std::vector<Current> current;
+  std::vector<Deviation> moved;
+  for (auto& [key, s] : map) {
+    if (key.first != plant_id) continue;
+    if (s.level == Level::stale && s.last_time != time) continue;  // still silent
+    const SeriesStatus status = s.monitor.status();
+    const Level level = config_.policy.level(status, s.episode);
+    current.push_back({&key, &s, status, level});
+    if (level == Level::warn || level == Level::error)
+      moved.push_back({key.second, status.relative, status.relative_sigma});
+  }
+  const std::vector<Isolation> isolations = isolate(moved, config_.isolation);
+
+  for (Current& c : current) {
+    Series& s = *c.series;
+    const auto isolation = std::find_if(isolations.begin(), isolations.end(),
+                                        [&](const Isolation& i) { return i.parameter == c.key->second; });
+    std::string fault(s.role.fault);
+    std::optional<int> channel = s.role.channel;
+    if (isolation != isolations.end()) {
+      fault = isolation->fault;
+      channel = isolation->channel;
+    }
+    s.episode = c.level == Level::ok ? Level::ok : std::max(s.episode, c.level);
+    if (c.level == s.level && fault == s.fault && channel == s.channel) continue;
+    const bool changed = isolation != isolations.end();
+    alerts.push_back(make_alert(
+        time, plant_id, c.key->second, c.level, fault, channel, changed ? c.status.level : s.last_value,
+        s.monitor.baseline(),
+        changed ? change_message(*isolation, c.status, config_.policy, config_.monitor.slope.window)
+                : ok_message(s.role.subject, c.status, s.level, config_.monitor.learning_windows)));
+    s.level = c.level;
+    s.fault = std::move(fault);
+    s.channel = channel;
+  }
+}
+
+void DiagnosticsEngine::set_baseline(const std::string& plant_id, const std::string& parameter,
+                                     const Baseline& baseline, double time) {
+  baseline.validate();
+  const ParameterRole role = parameter_role(parameter);
+  Batch batch;
+  batch.baselines.push_back({plant_id, parameter, baseline, time});
+  store_.write(batch);
+  const Key key{plant_id, parameter};
+  auto it = series_.find(key);
+  if (it == series_.end()) {
+    series_.emplace(key, Series(SeriesMonitor(config_.monitor, baseline), role));
+  } else {
+    it->second.monitor = SeriesMonitor(config_.monitor, baseline);
+  }
+}
+
+Level DiagnosticsEngine::level(const std::string& plant_id, const std::string& parameter) const {
+  const auto it = series_.find({plant_id, parameter});
+  if (it == series_.end())
+    throw Error("diagnostics: no estimate of " + parameter + " of plant '" + plant_id + "' seen yet");
+  return it->second.level;
+}
+
+}  // namespace ambid::diag

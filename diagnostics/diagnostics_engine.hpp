@@ -1,0 +1,87 @@
+#pragma once
+// The diagnostics engine: takes windows of identified physical parameters, watches every
+// parameter of every plant (series_monitor.hpp), names the fault behind the parameters that
+// moved (fault_isolation.hpp), decides the level of each (alert_policy.hpp) and returns an
+// alert whenever the level, fault or channel of a parameter changes. Every window, the
+// baselines it learns and the alerts it raises are written to the trend store in one
+// transaction per call.
+//
+// What persists across a restart: the history, the baselines and the alerts. The detectors
+// start again from the stored baselines (a lasting change is raised again within the delays
+// of change_detection.hpp); a baseline still being learned is learned again from new windows.
+//
+// Not thread-safe: one thread at a time.
+#include <map>
+#include <optional>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "diagnostics/alert.hpp"
+#include "diagnostics/alert_policy.hpp"
+#include "diagnostics/fault_isolation.hpp"
+#include "diagnostics/series_monitor.hpp"
+#include "diagnostics/trend_store.hpp"
+
+namespace ambid::diag {
+
+struct EngineConfig {
+  MonitorConfig monitor;
+  AlertPolicy policy;
+  IsolationConfig isolation;
+  void validate() const;
+};
+
+class DiagnosticsEngine {
+ public:
+  // The store must outlive the engine.
+  DiagnosticsEngine(TrendStore& store, const EngineConfig& config = {});
+
+  // Windows in time order per plant and parameter. Each window also marks STALE the other
+  // parameters of its plant that have had no estimate for longer than the stale timeout.
+  // Throws Error for an invalid window, an unmonitored parameter, a time that does not
+  // follow the previous estimate of its parameter, or a store failure; then nothing of the
+  // call is kept, neither in the engine nor in the store.
+  std::vector<Alert> process(std::span<const EstimateWindow> windows);
+  std::vector<Alert> process(const EstimateWindow& window) { return process(std::span(&window, 1)); }
+
+  // Marks STALE every parameter without an estimate since now - stale_timeout (`now` on the
+  // clock of the window times). Stores and returns the alerts.
+  std::vector<Alert> check_stale(double now);
+
+  // Gives a baseline explicitly (stored at once, stamped `time`); detection of the parameter
+  // starts again from it.
+  void set_baseline(const std::string& plant_id, const std::string& parameter, const Baseline& baseline,
+                    double time);
+
+  // The current level of a parameter; Error when the engine has not seen it.
+  Level level(const std::string& plant_id, const std::string& parameter) const;
+
+ private:
+  struct Series {
+    Series(SeriesMonitor m, const ParameterRole& r)
+        : monitor(std::move(m)), role(r), fault(r.fault), channel(r.channel) {}
+    SeriesMonitor monitor;
+    ParameterRole role;
+    std::optional<double> last_time;  // empty until the first estimate
+    double last_value = 0.0;
+    Level level = Level::ok;  // as last reported (OK until an alert says otherwise)
+    std::string fault;
+    std::optional<int> channel;
+    Level episode = Level::ok;  // highest level since last OK
+  };
+  using Key = std::pair<std::string, std::string>;  // plant id, parameter
+  using SeriesMap = std::map<Key, Series>;
+
+  Series& series(SeriesMap& map, const std::string& plant_id, const std::string& parameter) const;
+  void mark_stale(SeriesMap& map, const std::optional<std::string>& plant_id, double now,
+                  std::vector<Alert>& alerts) const;
+  void evaluate(SeriesMap& map, const std::string& plant_id, double time, std::vector<Alert>& alerts) const;
+
+  TrendStore& store_;
+  EngineConfig config_;
+  SeriesMap series_;
+};
+
+}  // namespace ambid::diag

@@ -1,0 +1,105 @@
+#pragma once
+// The trend store: one SQLite file per deployment holding every identified physical parameter
+// (time, plant, source, parameter, value, sigma), the baselines and the alerts raised.
+//
+// Durability: the file is in WAL mode with synchronous=FULL. In WAL mode, NORMAL already
+// keeps the file consistent through a crash of the process, but after a power loss or an OS
+// crash it may lose the last transactions that were reported committed (the WAL is synced only
+// at checkpoints). FULL syncs the WAL at every commit, so a commit that returned is on disk:
+// "nothing lost on crash" holds for power loss too. Its price, one fsync per commit, is small
+// because writes come in batches (one transaction per write(), a window of estimates every
+// second or slower in the daemon, thousands of windows per transaction offline).
+//
+// Concurrency: one writer (the daemon or `ambid diagnose`) and any number of readers in other
+// processes (open read_only). WAL lets readers see the last committed state while the writer
+// writes; a reader never sees part of a batch. Waits for a lock up to 5 s (busy timeout)
+// before failing. One TrendStore object must be used by one thread at a time.
+//
+// Schema versioned with PRAGMA user_version (kSchemaVersion); opening a newer file, or a
+// read_only open of an older or empty one, is refused.
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "diagnostics/alert.hpp"
+#include "diagnostics/baseline.hpp"
+#include "diagnostics/estimate.hpp"
+
+namespace ambid::diag {
+
+inline constexpr int kSchemaVersion = 1;
+
+struct StoredEstimate {
+  double time = 0.0;
+  std::string plant_id;
+  Source source = Source::sim;
+  std::string parameter;
+  double value = 0.0;
+  double sigma = 0.0;
+};
+
+struct BaselineRecord {
+  std::string plant_id;
+  std::string parameter;
+  Baseline baseline;
+  double time = 0.0;  // when it was learned or given
+};
+
+// What one write() stores atomically.
+struct Batch {
+  std::vector<EstimateWindow> windows;
+  std::vector<Alert> alerts;
+  std::vector<BaselineRecord> baselines;  // replace any baseline of the same plant and parameter
+};
+
+// Rows older than now - max_age are removed; of each (plant, parameter) series only the newest
+// max_rows_per_series estimates are kept. Alerts follow max_age only. An empty limit keeps all.
+struct RetentionPolicy {
+  std::optional<double> max_age;  // seconds
+  std::optional<std::int64_t> max_rows_per_series;
+  void validate() const;  // max_age >= 0 and finite, max_rows_per_series >= 0
+};
+
+struct RetentionReport {
+  std::int64_t estimates_removed = 0;
+  std::int64_t alerts_removed = 0;
+};
+
+enum class OpenMode { read_write, read_only };
+
+class TrendStore {
+ public:
+  // read_write creates the file and its schema when absent.
+  explicit TrendStore(const std::filesystem::path& file, OpenMode mode = OpenMode::read_write);
+  ~TrendStore();
+  TrendStore(const TrendStore&) = delete;
+  TrendStore& operator=(const TrendStore&) = delete;
+
+  // Stores the whole batch in one transaction, or nothing (Error on invalid input or sqlite
+  // failure).
+  void write(const Batch& batch);
+
+  // Estimates of one parameter of one plant with from <= time <= to, oldest first.
+  std::vector<StoredEstimate> history(const std::string& plant_id, const std::string& parameter,
+                                      double from = -std::numeric_limits<double>::infinity(),
+                                      double to = std::numeric_limits<double>::infinity()) const;
+  // The newest `limit` alerts, newest first; of one plant when plant_id is given.
+  std::vector<Alert> latest_alerts(std::size_t limit, const std::optional<std::string>& plant_id = {}) const;
+  std::optional<Baseline> baseline(const std::string& plant_id, const std::string& parameter) const;
+
+  // Applies the policy in one transaction.
+  RetentionReport apply_retention(const RetentionPolicy& policy, double now);
+
+  // PRAGMA integrity_check: "ok", or the first problem sqlite found.
+  std::string integrity_check() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ambid::diag

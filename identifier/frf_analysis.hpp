@@ -1,0 +1,74 @@
+#pragma once
+// `ambid frf`: the frequency-domain analysis of one closed-loop experiment, values only (the
+// command line writes files and plots). What it does:
+// - chooses the estimator from the sidecar's "excitation" description: a multisine (or a
+//   periodic PRBS of one channel) is analysed period-exactly at its lines, blocks of
+//   `hadamard` order for the orthogonal pattern; anything else (random, PRBS shorter than two
+//   periods, chirp, stepped sine, no description) by Welch cross spectra;
+// - the plant FRF of every OUTPUT/INPUT pair (indirect, with noise bounds or coherence), the
+//   direct estimate for comparison, the closed-loop responses;
+// - with a recorded controller: the input sensitivity measured from r -> u, its peak per plant
+//   input and of sigma_max with the ISO 14839-3 zone, and the seed 003 eq. 5 controller check;
+// - a continuous rational fit of every pair below fit_f_max (order by validation misfit, ZOH
+//   compensated, noise weighted when variances exist): poles, zeros, gain.
+// Steps that cannot run say why in `notes` instead of failing the whole analysis.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/experiment.hpp"
+#include "identifier/frf_open_loop.hpp"
+#include "identifier/frf_types.hpp"
+#include "identifier/iso_14839.hpp"
+#include "identifier/rational_fit.hpp"
+#include "identifier/sensitivity_function.hpp"
+
+namespace ambid::ident {
+
+struct FrfAnalysisOptions {
+  int transient_periods = -1;        // periodic: discarded periods; -1: one if a block remains, else 0
+  Eigen::Index segment_samples = 0;  // Welch window; 0: largest power of two <= samples / 8 (>= 64)
+  double f_min = 0.0, f_max = 0.0;   // lines kept (0: all)
+  double confidence = 0.95;          // of the noise bounds
+  bool fit = true;
+  double fit_f_max = 0.0;            // 0: min(highest line, 0.1 / sample_time)
+  int fit_max_order = 6;
+  IsoZoneLimits iso;
+};
+
+struct PlantPair {
+  std::string name;            // "OUTPUT/INPUT", e.g. "x/u1"
+  std::string output, input;
+  Eigen::VectorXcd value;      // per line
+  Eigen::VectorXd variance;    // E|error|^2 per line; empty when unknown
+  Eigen::VectorXd bound;       // |G - value| <= bound at options.confidence; empty when unknown
+  Eigen::VectorXd coherence;   // Welch: multiple coherence of the output with the references
+};
+
+struct FittedPair {
+  std::string name, output, input;
+  RationalFit fit;
+};
+
+struct FrfReport {
+  std::string method;      // "periodic" | "welch"
+  std::string excitation;  // the sidecar's excitation kind, or "unknown"
+  std::vector<std::string> output_names, input_names, reference_names;
+  Eigen::VectorXd frequency_hz;
+  Frf plant, plant_direct, output_from_reference, input_from_reference;
+  std::vector<PlantPair> pairs;  // outputs x inputs, output-major
+  Eigen::Index blocks = 0;       // periodic: blocks averaged; Welch: segments
+  std::optional<Frf> sensitivity;                 // input sensitivity S_u
+  std::vector<SensitivityPeak> sensitivity_peaks; // one per plant input, then "sigma_max"
+  std::optional<ControllerCheck> controller_check;
+  std::vector<FittedPair> fits;
+  std::vector<std::string> notes;
+};
+
+// Throws Error for an invalid experiment and InsufficientData when it has no excitation or the
+// estimator cannot produce a plant FRF (too short, references not independent).
+FrfReport analyse_frf(const Experiment& experiment, const FrfAnalysisOptions& options = {});
+
+}  // namespace ambid::ident

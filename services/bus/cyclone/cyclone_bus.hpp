@@ -1,0 +1,13 @@
+#pragma once
+// The Cyclone DDS backend (C API). No Cyclone header here: bus.cpp includes this and the
+// Fast DDS backend's header in one translation unit.
+#include <memory>
+#include <string_view>
+
+#include "services/bus/bus.hpp"
+
+namespace ambid::bus {
+
+std::unique_ptr<Bus> make_cyclone_bus(int domain, std::string_view profile);
+
+}  // namespace ambid::bus
