@@ -9,6 +9,7 @@
 //   auto models = bus->reader<ambid::bus::IdentifiedModel>();
 //   while (running) { bus->wait(100ms); for (auto& m : models->take()) ...; models->events(); }
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <string_view>

@@ -33,9 +33,9 @@ bool port_free(int port) {
   address.sin_family = AF_INET;
   address.sin_port = htons(static_cast<std::uint16_t>(port));
   address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  const bool free = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+  const bool bound = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
   close(fd);
-  return free;
+  return bound;
 }
 
 // The lowest participant id whose unicast ports (7410 / 7411 + 250 domain + 2 id) are free, as
