@@ -86,20 +86,26 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
   yu << y.bottomRows(N - k0), uf.bottomRows(N - k0);
   if (ni > 0) yu.rightCols(m) -= e.bottomRows(N - k0) * Fe.transpose();
   const Eigen::MatrixXd X = yu * Mx.transpose();  // (N - k0) x n
+  const bool affine = options.estimate_offset;
+  const Eigen::Index regs = n + m + (affine ? 1 : 0);
   std::vector<std::string> names;
   for (Eigen::Index j = 0; j < n; ++j) names.push_back("x" + std::to_string(j + 1) + "[k]");
   for (Eigen::Index j = 0; j < m; ++j) names.push_back("u" + std::to_string(j + 1) + "[k]");
+  if (affine) names.push_back("constant");
   const Eigen::Index rows = N - k0 - 1;
   if (rows < 1) throw InsufficientData("deadbeat realisation: needs at least two samples after the transient");
-  Eigen::MatrixXd phi(rows, n + m);
-  phi << X.topRows(rows), u.middleRows(k0, rows);
-  LeastSquaresAccumulator acc(n + m, n, names);
+  Eigen::MatrixXd phi(rows, regs);
+  phi.leftCols(n) = X.topRows(rows);
+  phi.middleCols(n, m) = u.middleRows(k0, rows);
+  if (affine) phi.col(n + m).setOnes();
+  LeastSquaresAccumulator acc(regs, n, names);
   acc.add(phi, X.bottomRows(rows));
   out.fit = acc.solve(options.least_squares);
 
-  const Eigen::MatrixXd thetaT = out.fit.theta.transpose();  // n x (n + m) = [A B]
+  const Eigen::MatrixXd thetaT = out.fit.theta.transpose();  // n x regs = [A B (c)]
   out.system.A = thetaT.leftCols(n);
-  out.system.B = thetaT.rightCols(m);
+  out.system.B = thetaT.middleCols(n, m);
+  out.offset = affine ? Eigen::VectorXd(thetaT.col(n + m)) : Eigen::VectorXd::Zero(n);
   out.system.C = C;
   out.system.D = Eigen::MatrixXd::Zero(p, m);
   out.system.sample_time = sample_time;

@@ -38,6 +38,11 @@ namespace ambid::ident {
 
 struct DeadbeatOptions {
   Eigen::Index transient_samples = 0;  // leading samples skipped (observer transient)
+  // Estimate a constant c in x[k+1] = A x + B u + c (one more regressor). Data in deviations
+  // from the NOMINAL operating point carry an offset when the plant settles elsewhere (e.g. a
+  // coil resistance off nominal moves the equilibrium currents); without c that offset biases
+  // A and B. c = 0 for data around the true equilibrium.
+  bool estimate_offset = true;
   LeastSquaresOptions least_squares;
 };
 
@@ -47,7 +52,8 @@ struct DeadbeatRealization {
   Eigen::MatrixXd state_map;       // M_x: x = M_x [y; uf - Fe e], n x (outputs + inputs)
   Eigen::MatrixXd cbar;            // Cbar = [C 0; -F Fe]
   bool cbar_invertible = false;    // eq. (46) applies as printed
-  LeastSquaresSolution fit;        // x[k+1]' = [x[k]' u[k]'] theta, theta = [A B]'
+  Eigen::VectorXd offset;          // c (zero when not estimated)
+  LeastSquaresSolution fit;        // x[k+1]' = [x[k]' u[k]' (1)] theta, theta = [A B (c)]'
   // Covariance of p = [A row by row, B row by row] (n n + n m entries).
   Eigen::MatrixXd parameter_covariance;
 };

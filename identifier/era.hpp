@@ -10,6 +10,8 @@
 // ERA/DC replaces H(k) by the block correlation Hankel  [ R(k+i+j) ]_{i,j<=xi},
 // R(k) = H(k) H(0)', realises A from it the same way, C from the first block row of its left
 // factor, and B = P^+ H(0) E_m with P that factor's first block (the observability matrix).
+// ERA/DC squares the dynamic range of the singular values: for strongly unstable sequences
+// (e.g. LAMSTF at 100 Hz, growth 1.8^k) plain ERA is the better choice.
 //
 // Order selection: all singular values are returned; suggest_order() proposes the order at
 // the largest gap (largest ratio of consecutive singular values, each floored at a small
