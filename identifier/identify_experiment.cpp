@@ -27,7 +27,7 @@ LoopSignals signals_of(const Experiment& e) {
 
 KnownController controller_of(const Experiment& e, const LoopSignals& s, const std::string& method) {
   if (!e.controller)
-    throw Error(kWho + ": method '" + method + "' needs the controller that closed the loop; the experiment has none");
+    throw Error(kWho + ": method '" + method + "' needs the controller that closed the loop; the experiment has no controller");
   return known_controller(*e.controller, s.u_names, s.y_names);  // refuses feedthrough from u
 }
 
