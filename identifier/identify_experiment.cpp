@@ -58,11 +58,17 @@ void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realizatio
 
 void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
   if (!is_amb1dof(e))
-    throw Error(kWho + ": method 'deadbeat' is defined for plant model 'amb1dof_voltage' only, got '" + e.plant.model + "'");
+    throw Error(kWho + ": method '" + o.method + "' is defined for plant model 'amb1dof_voltage' only, got '" +
+                e.plant.model + "'");
   if (o.order != 0 && o.order != 4)
-    throw Error(kWho + ": method 'deadbeat' gives the 4 physical states of amb1dof_voltage; --order " +
+    throw Error(kWho + ": method '" + o.method + "' gives the 4 physical states of amb1dof_voltage; --order " +
                 std::to_string(o.order) + " is not possible");
-  const Amb1dofIdentification id = identify_amb1dof_deadbeat(e);
+  DeadbeatOptions dopt;
+  if (o.method == "deadbeat-iv") {
+    require_excitation(e, o.method);
+    dopt.instrument_lags = o.instrument_lags > 0 ? o.instrument_lags : kDefaultInstrumentLags;
+  }
+  const Amb1dofIdentification id = identify_amb1dof_deadbeat(e, dopt);
   model.discrete = id.realization.system;
   model.continuous = id.continuous;
   model.parameters = id.parameters;
@@ -127,7 +133,7 @@ void validate_on(const Experiment& validation, Model& model) {
 }  // namespace
 
 const std::vector<std::string>& identification_methods() {
-  static const std::vector<std::string> methods = {"deadbeat", "okid", "closed-loop", "projection"};
+  static const std::vector<std::string> methods = {"deadbeat", "deadbeat-iv", "okid", "closed-loop", "projection"};
   return methods;
 }
 
@@ -154,11 +160,11 @@ Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
 Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   const auto& methods = identification_methods();
   if (std::find(methods.begin(), methods.end(), o.method) == methods.end())
-    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, okid, closed-loop or projection)");
+    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, deadbeat-iv, okid, closed-loop or projection)");
   if (!(o.validation_fraction >= 0.0 && o.validation_fraction <= 0.9))
     throw Error(kWho + ": validation fraction must be in [0, 0.9], got " + std::to_string(o.validation_fraction));
-  if (o.skip_samples < 0 || o.arx_order < 0 || o.markov_count < 0)
-    throw Error(kWho + ": skip_samples, arx_order and markov_count must be >= 0");
+  if (o.skip_samples < 0 || o.arx_order < 0 || o.markov_count < 0 || o.instrument_lags < 0)
+    throw Error(kWho + ": skip_samples, arx_order, markov_count and instrument_lags must be >= 0");
   e.validate();
   const Index usable = e.samples() - o.skip_samples;
   const Index validation = static_cast<Index>(std::floor(o.validation_fraction * double(usable)));
@@ -173,7 +179,7 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   model.plant_model = e.plant.model;
   model.method = o.method;
   model.sample_time = e.sample_time;
-  if (o.method == "deadbeat") {
+  if (o.method == "deadbeat" || o.method == "deadbeat-iv") {
     fit_deadbeat(fit, o, model);
   } else {
     const DiscreteSystem realization = o.method == "okid"          ? fit_okid(fit, o, arx_order, markov_count)

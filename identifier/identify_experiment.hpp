@@ -4,6 +4,8 @@
 //
 // Methods (all time domain, all from closed-loop data):
 //   deadbeat     seed 000 physical realisation (amb1dof_voltage only; needs the controller)
+//   deadbeat-iv  the same equations solved by instrumental variables with the delayed
+//                excitation r as instruments: consistent under sensor noise (needs r)
 //   okid         ARX of y on the plant input u, OKID Markov parameters, ERA (no controller needed)
 //   closed-loop  known-controller identification from r to y (Lee ch. 2; needs controller and r)
 //   projection   projection filters with unknown feedback (Lee ch. 4; needs the feedback uf = u - r)
@@ -30,11 +32,13 @@ struct IdentifyOptions {
   Eigen::Index arx_order = 0;      // okid/closed-loop/projection; 0: kDefaultArxOrder
   Eigen::Index markov_count = 0;   // Markov parameters for ERA; 0: kDefaultMarkovCount
   Eigen::Index skip_samples = 0;   // leading samples dropped (settling transient)
+  Eigen::Index instrument_lags = 0;  // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
   double validation_fraction = 0.25;  // in [0, 0.9]; 0: no validation (fit.nrmse empty)
 };
 
 inline constexpr Eigen::Index kDefaultArxOrder = 8;
 inline constexpr Eigen::Index kDefaultMarkovCount = 30;
+inline constexpr Eigen::Index kDefaultInstrumentLags = 20;
 
 const std::vector<std::string>& identification_methods();
 
