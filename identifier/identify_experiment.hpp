@@ -36,7 +36,7 @@ struct IdentifyOptions {
   double validation_fraction = 0.25;  // in [0, 0.9]; 0: no validation (fit.nrmse empty)
 };
 
-inline constexpr Eigen::Index kDefaultArxOrder = 8;
+inline constexpr Eigen::Index kDefaultArxOrder = 16;
 inline constexpr Eigen::Index kDefaultMarkovCount = 30;
 inline constexpr Eigen::Index kDefaultInstrumentLags = 20;
 
