@@ -1,0 +1,27 @@
+#include "integration/ambid_process.hpp"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+
+namespace ambid::testing {
+
+CommandResult run_ambid(const std::string& args) {
+  const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (pipe && std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
+  const int status = pipe ? pclose(pipe) : -1;
+  return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(AMBID_BINARY_DIR) / "test-output" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace ambid::testing
