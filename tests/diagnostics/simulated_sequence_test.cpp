@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,7 @@ struct StepCase {
   std::string fault;
   int channel;
 };
+void PrintTo(const StepCase& c, std::ostream* os) { *os << c.parameter; }
 
 class SimulatedStep : public ::testing::TestWithParam<StepCase> {};
 
