@@ -6,20 +6,14 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "identifier/amb1dof_structure.hpp"
 #include "identifier/closed_loop_id.hpp"
+#include "identifier/loop_signals.hpp"
 
 namespace ambid::ident {
 namespace {
 
 using Index = Eigen::Index;
-
-const std::vector<std::string> kV = {"v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8", "v9"};
-
-Eigen::Matrix<double, 9, 1> structure_of(const ContinuousSystem& c) {
-  Eigen::Matrix<double, 9, 1> v;
-  v << c.A(1, 0), c.A(1, 2), -c.A(1, 3), -c.A(2, 1), -c.A(2, 2), c.A(3, 1), -c.A(3, 3), c.B(2, 0), c.B(3, 1);
-  return v;
-}
 
 ContinuousSystem continuous_of(const Eigen::VectorXd& p, const DiscreteSystem& like) {
   DiscreteSystem d = like;
@@ -32,19 +26,6 @@ ContinuousSystem continuous_of(const Eigen::VectorXd& p, const DiscreteSystem& l
 }
 
 double max_abs_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).cwiseAbs().maxCoeff(); }
-
-Index column_of(const std::vector<std::string>& names, const std::string& name, const std::string& what) {
-  const auto it = std::find(names.begin(), names.end(), name);
-  if (it == names.end()) throw Error("amb1dof deadbeat identification: signal '" + name + "' missing from " + what);
-  return static_cast<Index>(it - names.begin());
-}
-
-double parameter(const Experiment& e, const std::string& name) {
-  const auto it = e.plant.parameters.find(name);
-  if (it == e.plant.parameters.end())
-    throw Error("amb1dof deadbeat identification: plant.parameters." + name + " is missing");
-  return it->second;
-}
 
 }  // namespace
 
@@ -97,13 +78,8 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Eigen::MatrixXd& y, const 
   out.realization = deadbeat_realization(y, u, uf, e, C, gains.F, gains.Fe, sample_time, options);
   const DiscreteSystem& d = out.realization.system;
   out.continuous = d2c_zoh(d);
-  const Eigen::Matrix<double, 9, 1> v = structure_of(out.continuous);
-  const ContinuousSystem& c = out.continuous;
-  out.structure_deviation =
-      std::max({std::abs(c.A(0, 0)), std::abs(c.A(0, 1) - 1.0), std::abs(c.A(0, 2)), std::abs(c.A(0, 3)),
-                std::abs(c.A(1, 1)), std::abs(c.A(2, 0)), std::abs(c.A(2, 3)), std::abs(c.A(3, 0)), std::abs(c.A(3, 2)),
-                c.B.topRows(2).cwiseAbs().maxCoeff(), std::abs(c.B(2, 1)), std::abs(c.B(3, 0))}) /
-      std::abs(v(0));
+  const Eigen::Matrix<double, 9, 1> v = amb1dof_structure_vector(out.continuous);
+  out.structure_deviation = amb1dof_structure_deviation(out.continuous);
 
   // First-order propagation of the covariance of p = [A rows, B rows] through d2c and eq. (4).
   const Index n = 4, mi = 2, np = n * (n + mi);
@@ -120,13 +96,13 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Eigen::MatrixXd& y, const 
     Eigen::VectorXd plus = p, minus = p;
     plus(j) += h;
     minus(j) -= h;
-    J.col(j) = (structure_of(continuous_of(plus, d)) - structure_of(continuous_of(minus, d))) / (2.0 * h);
+    J.col(j) = (amb1dof_structure_vector(continuous_of(plus, d)) - amb1dof_structure_vector(continuous_of(minus, d))) / (2.0 * h);
   }
   out.parameter_covariance = J * out.realization.parameter_covariance * J.transpose();
 
-  Eigen::Matrix<double, 9, 1> scale;
-  scale << m, m, m, L1, L1, L2, L2, L1, L2;  // ks kr1 kr2 kr1_emf R1 kr2_emf R2 kw1 kw2 (in v order)
-  const std::vector<std::string> physical_of_v = {"ks", "kr1", "kr2", "kr1_emf", "R1", "kr2_emf", "R2", "kw1", "kw2"};
+  const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(L1, L2, m);
+  const std::vector<std::string>& kV = amb1dof_structure_names();
+  const std::vector<std::string>& physical_of_v = amb1dof_physical_names();
   for (Index i = 0; i < 9; ++i) {
     const double sigma = std::sqrt(std::max(0.0, out.parameter_covariance(i, i)));
     out.parameters[kV[static_cast<std::size_t>(i)]] = v(i);
@@ -142,25 +118,10 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Experiment& e, const Deadb
     throw Error("amb1dof deadbeat identification: plant.model is '" + e.plant.model + "', expected 'amb1dof_voltage'");
   if (!e.controller) throw Error("amb1dof deadbeat identification: the experiment has no controller (it must be known)");
   const std::vector<std::string> un = {"u1", "u2"}, yn = {"x", "i1", "i2"};
-  const Eigen::MatrixXd ydev = e.y_deviation(), udev = e.u_deviation();
-  Eigen::MatrixXd y(e.samples(), 3), u(e.samples(), 2);
-  for (Index j = 0; j < 3; ++j) y.col(j) = ydev.col(column_of(e.y_names, yn[static_cast<std::size_t>(j)], "signals.y"));
-  for (Index j = 0; j < 2; ++j) u.col(j) = udev.col(column_of(e.u_names, un[static_cast<std::size_t>(j)], "signals.u"));
-  // r is added to the controller outputs (one r signal per controller output, in order).
-  Eigen::MatrixXd uf = u;
-  if (e.has_excitation()) {
-    const Eigen::MatrixXd rdev = e.r_deviation();
-    const auto& outs = e.controller->outputs;
-    if (rdev.cols() != static_cast<Index>(outs.size()))
-      throw Error("amb1dof deadbeat identification: " + std::to_string(rdev.cols()) + " r signals for " +
-                  std::to_string(outs.size()) + " controller outputs");
-    for (Index j = 0; j < rdev.cols(); ++j) uf.col(column_of(un, outs[static_cast<std::size_t>(j)], "the plant inputs")) -= rdev.col(j);
-  }
+  const LoopSignals s = loop_signals(e, yn, un, "amb1dof deadbeat identification");
   const KnownController k = known_controller(*e.controller, un, yn);
   const ObserverIntegralGains gains = observer_integral_gains(k.A, k.B, k.C, k.D, 4, 2);
-  const double x0 = parameter(e, "x0");
-  const double L1 = parameter(e, "Ls1") + parameter(e, "K1") / (2.0 * x0);
-  const double L2 = parameter(e, "Ls2") + parameter(e, "K2") / (2.0 * x0);
+  const Amb1dofNominal nominal = amb1dof_nominal(e, "amb1dof deadbeat identification");
   Eigen::VectorXd s0;
   const Eigen::VectorXd& xc0 = e.controller->initial_state;
   if (xc0.size() != 0) {
@@ -169,7 +130,8 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Experiment& e, const Deadb
                   " entries, the controller " + std::to_string(k.A.rows()) + " states");
     s0 = xc0.tail(gains.E.rows());
   }
-  return identify_amb1dof_deadbeat(y, u, uf, gains, s0, e.sample_time, L1, L2, parameter(e, "m"), options);
+  return identify_amb1dof_deadbeat(s.y, s.u, s.uf, gains, s0, e.sample_time, nominal.L1, nominal.L2, nominal.m,
+                                   options);
 }
 
 }  // namespace ambid::ident

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "identifier/instrumental_variables.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -92,15 +93,25 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
   for (Eigen::Index j = 0; j < n; ++j) names.push_back("x" + std::to_string(j + 1) + "[k]");
   for (Eigen::Index j = 0; j < m; ++j) names.push_back("u" + std::to_string(j + 1) + "[k]");
   if (affine) names.push_back("constant");
-  const Eigen::Index rows = N - k0 - 1;
+  const Eigen::Index lags = options.instrument_lags;
+  if (lags < 0) throw Error("deadbeat realisation: instrument_lags must be >= 0, got " + std::to_string(lags));
+  const Eigen::Index rows = N - k0 - 1 - lags;  // equations for k = k0 + lags .. N - 2
   if (rows < 1) throw InsufficientData("deadbeat realisation: needs at least two samples after the transient");
   Eigen::MatrixXd phi(rows, regs);
-  phi.leftCols(n) = X.topRows(rows);
-  phi.middleCols(n, m) = u.middleRows(k0, rows);
+  phi.leftCols(n) = X.middleRows(lags, rows);
+  phi.middleCols(n, m) = u.middleRows(k0 + lags, rows);
   if (affine) phi.col(n + m).setOnes();
-  LeastSquaresAccumulator acc(regs, n, names);
-  acc.add(phi, X.bottomRows(rows));
-  out.fit = acc.solve(options.least_squares);
+  if (lags == 0) {
+    LeastSquaresAccumulator acc(regs, n, names);
+    acc.add(phi, X.bottomRows(rows));
+    out.fit = acc.solve(options.least_squares);
+  } else {
+    const Eigen::MatrixXd r = u - uf;
+    Eigen::MatrixXd instruments(rows, m * (lags + 1) + (affine ? 1 : 0));
+    for (Eigen::Index j = 0; j <= lags; ++j) instruments.middleCols(j * m, m) = r.middleRows(k0 + lags - j, rows);
+    if (affine) instruments.rightCols(1).setOnes();
+    out.fit = solve_instrumental_variables(phi, X.bottomRows(rows), instruments, names, options.least_squares);
+  }
 
   const Eigen::MatrixXd thetaT = out.fit.theta.transpose();  // n x regs = [A B (c)]
   out.system.A = thetaT.leftCols(n);

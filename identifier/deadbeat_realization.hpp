@@ -43,6 +43,12 @@ struct DeadbeatOptions {
   // coil resistance off nominal moves the equilibrium currents); without c that offset biases
   // A and B. c = 0 for data around the true equilibrium.
   bool estimate_offset = true;
+  // > 0: instrumental variables (instrumental_variables.hpp) with the instruments
+  // r[k], r[k-1], ..., r[k-lags] (r = u - uf, the excitation) and the constant, instead of
+  // least squares. Sensor noise reaches both the reconstructed state and, through the
+  // controller, u: least squares is then biased; r is independent of the noise, so IV is
+  // consistent. The first `lags` equations are dropped.
+  Eigen::Index instrument_lags = 0;
   LeastSquaresOptions least_squares;
 };
 

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   ambid::cli::add_sim_command(app);
   ambid::cli::add_diagnose_command(app);
+  ambid::cli::add_identify_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

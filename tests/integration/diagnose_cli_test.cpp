@@ -9,14 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "integration/ambid_process.hpp"
+#include "cli_run.hpp"
 
 namespace ambid {
 namespace {
 
 using ::testing::HasSubstr;
-using testing::fresh_dir;
-using testing::run_ambid;
+using cli_test::fresh_dir;
+using cli_test::run_ambid;
 namespace fs = std::filesystem;
 
 const std::string kNoise = " --duration 0.5 --amplitude 1 --position-noise 1e-9 --current-noise 1e-6";

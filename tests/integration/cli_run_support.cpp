@@ -1,20 +1,20 @@
-#include "integration/ambid_process.hpp"
+#include "cli_run.hpp"
 
 #include <sys/wait.h>
 
 #include <array>
 #include <cstdio>
 
-namespace ambid::testing {
+namespace ambid::cli_test {
 
 CommandResult run_ambid(const std::string& args) {
   const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer{};
-  while (pipe && std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
-  const int status = pipe ? pclose(pipe) : -1;
-  return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
 std::filesystem::path fresh_dir(const std::string& name) {
@@ -24,4 +24,4 @@ std::filesystem::path fresh_dir(const std::string& name) {
   return dir;
 }
 
-}  // namespace ambid::testing
+}  // namespace ambid::cli_test

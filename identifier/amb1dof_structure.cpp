@@ -1,0 +1,76 @@
+#include "identifier/amb1dof_structure.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+
+namespace ambid::ident {
+
+const std::vector<std::string>& amb1dof_structure_names() {
+  static const std::vector<std::string> names = {"v1", "v2", "v3", "v4", "v5", "v6", "v7", "v8", "v9"};
+  return names;
+}
+
+const std::vector<std::string>& amb1dof_physical_names() {
+  static const std::vector<std::string> names = {"ks", "kr1", "kr2", "kr1_emf", "R1", "kr2_emf", "R2", "kw1", "kw2"};
+  return names;
+}
+
+Eigen::Matrix<double, 9, 1> amb1dof_structure_vector(const ContinuousSystem& c) {
+  Eigen::Matrix<double, 9, 1> v;
+  v << c.A(1, 0), c.A(1, 2), -c.A(1, 3), -c.A(2, 1), -c.A(2, 2), c.A(3, 1), -c.A(3, 3), c.B(2, 0), c.B(3, 1);
+  return v;
+}
+
+double amb1dof_structure_deviation(const ContinuousSystem& c) {
+  return std::max({std::abs(c.A(0, 0)), std::abs(c.A(0, 1) - 1.0), std::abs(c.A(0, 2)), std::abs(c.A(0, 3)),
+                   std::abs(c.A(1, 1)), std::abs(c.A(2, 0)), std::abs(c.A(2, 3)), std::abs(c.A(3, 0)),
+                   std::abs(c.A(3, 2)), c.B.topRows(2).cwiseAbs().maxCoeff(), std::abs(c.B(2, 1)),
+                   std::abs(c.B(3, 0))}) /
+         std::abs(c.A(1, 0));
+}
+
+Eigen::Matrix<double, 9, 1> amb1dof_physical_scale(double L1, double L2, double m) {
+  Eigen::Matrix<double, 9, 1> scale;
+  scale << m, m, m, L1, L1, L2, L2, L1, L2;
+  return scale;
+}
+
+Amb1dofNominal amb1dof_nominal(const Experiment& e, const std::string& who) {
+  auto parameter = [&](const std::string& name) {
+    const auto it = e.plant.parameters.find(name);
+    if (it == e.plant.parameters.end()) throw Error(who + ": plant.parameters." + name + " is missing");
+    return it->second;
+  };
+  const double x0 = parameter("x0");
+  return {parameter("Ls1") + parameter("K1") / (2.0 * x0), parameter("Ls2") + parameter("K2") / (2.0 * x0),
+          parameter("m")};
+}
+
+Amb1dofPhysicalModel amb1dof_physical_model(const DiscreteSystem& r) {
+  r.validate();
+  if (r.states() != 4 || r.inputs() != 2 || r.outputs() != 3)
+    throw Error("amb1dof physical coordinates: need a realisation with 4 states, 2 inputs and 3 outputs, got " +
+                std::to_string(r.states()) + ", " + std::to_string(r.inputs()) + ", " + std::to_string(r.outputs()));
+  if (r.D.cwiseAbs().maxCoeff() != 0.0)
+    throw Error("amb1dof physical coordinates: the plant must be strictly proper (D = 0)");
+  const ContinuousSystem c = d2c_zoh(r);
+  Eigen::Matrix4d T;
+  T.row(0) = c.C.row(0);
+  T.row(1) = c.C.row(0) * c.A;
+  T.row(2) = c.C.row(1);
+  T.row(3) = c.C.row(2);
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(T);
+  const double rcond = 1.0 / (T.norm() * lu.inverse().norm());
+  if (!lu.isInvertible() || !(rcond > 1e-12))
+    throw Error("amb1dof physical coordinates: [C_x; C_x Ac; C_i1; C_i2] is singular (reciprocal condition " +
+                std::to_string(rcond) + "): the outputs and the rate of x do not determine the state");
+  const Eigen::Matrix4d Ti = lu.inverse();
+  Amb1dofPhysicalModel out;
+  out.discrete = {T * r.A * Ti, T * r.B, r.C * Ti, r.D, r.sample_time};
+  out.continuous = {T * c.A * Ti, T * c.B, c.C * Ti, c.D};
+  return out;
+}
+
+}  // namespace ambid::ident

@@ -1,0 +1,201 @@
+#include "identifier/identify_experiment.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/amb1dof_structure.hpp"
+#include "identifier/closed_loop_id.hpp"
+#include "identifier/closed_loop_validation.hpp"
+#include "identifier/loop_signals.hpp"
+#include "identifier/markov.hpp"
+#include "identifier/projection_filter.hpp"
+
+namespace ambid::ident {
+namespace {
+
+using Index = Eigen::Index;
+const std::string kWho = "identify";
+const std::vector<std::string> kAmbY = {"x", "i1", "i2"}, kAmbU = {"u1", "u2"};
+
+bool is_amb1dof(const Experiment& e) { return e.plant.model == "amb1dof_voltage"; }
+
+LoopSignals signals_of(const Experiment& e) {
+  return is_amb1dof(e) ? loop_signals(e, kAmbY, kAmbU, kWho) : loop_signals(e, kWho);
+}
+
+KnownController controller_of(const Experiment& e, const LoopSignals& s, const std::string& method) {
+  if (!e.controller)
+    throw Error(kWho + ": method '" + method + "' needs the controller that closed the loop; the experiment has no controller");
+  return known_controller(*e.controller, s.u_names, s.y_names);  // refuses feedthrough from u
+}
+
+void require_excitation(const Experiment& e, const std::string& method) {
+  if (!e.has_excitation())
+    throw Error(kWho + ": method '" + method + "' needs the excitation r; the experiment records none (signals.r)");
+}
+
+Index model_order(const Experiment& e, const IdentifyOptions& o) {
+  if (o.order < 0) throw Error(kWho + ": order must be >= 0, got " + std::to_string(o.order));
+  return o.order > 0 ? o.order : (is_amb1dof(e) ? 4 : 0);
+}
+
+// v1..v9 and the physical quantities of a 4-state amb1dof realisation with outputs [x, i1, i2].
+void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realization, Model& model) {
+  const Amb1dofPhysicalModel phys = amb1dof_physical_model(realization);
+  model.discrete = phys.discrete;
+  model.continuous = phys.continuous;
+  const Amb1dofNominal nominal = amb1dof_nominal(e, kWho);
+  const Eigen::Matrix<double, 9, 1> v = amb1dof_structure_vector(phys.continuous);
+  const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(nominal.L1, nominal.L2, nominal.m);
+  for (Index i = 0; i < 9; ++i) {
+    model.parameters[amb1dof_structure_names()[std::size_t(i)]] = v(i);
+    model.physical[amb1dof_physical_names()[std::size_t(i)]] = v(i) * scale(i);
+  }
+  model.extra["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
+}
+
+void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  if (!is_amb1dof(e))
+    throw Error(kWho + ": method '" + o.method + "' is defined for plant model 'amb1dof_voltage' only, got '" +
+                e.plant.model + "'");
+  if (o.order != 0 && o.order != 4)
+    throw Error(kWho + ": method '" + o.method + "' gives the 4 physical states of amb1dof_voltage; --order " +
+                std::to_string(o.order) + " is not possible");
+  DeadbeatOptions dopt;
+  if (o.method == "deadbeat-iv") {
+    require_excitation(e, o.method);
+    dopt.instrument_lags = o.instrument_lags > 0 ? o.instrument_lags : kDefaultInstrumentLags;
+  }
+  const Amb1dofIdentification id = identify_amb1dof_deadbeat(e, dopt);
+  model.discrete = id.realization.system;
+  model.continuous = id.continuous;
+  model.parameters = id.parameters;
+  model.physical = id.physical;
+  for (const auto& [k, v] : id.parameter_uncertainty) model.uncertainty[k] = v;
+  for (const auto& [k, v] : id.physical_uncertainty) model.uncertainty[k] = v;
+  model.extra["structure_deviation"] = id.structure_deviation;
+}
+
+DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+  const LoopSignals s = signals_of(e);
+  ArxOptions ao;
+  ao.order = arx_order;
+  const ArxModel arx = fit_arx(s.y, s.u, ao);
+  EraOptions eo;
+  eo.order = model_order(e, o);
+  return era(markov_from_arx(arx, markov_count).system, e.sample_time, eo).system;
+}
+
+DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+  require_excitation(e, "closed-loop");
+  const LoopSignals s = signals_of(e);
+  KnownControllerIdOptions co;
+  co.arx_order = arx_order;
+  co.markov_count = markov_count;
+  co.sample_time = e.sample_time;
+  co.era.order = model_order(e, o);
+  return identify_with_known_controller(s.r, s.y, controller_of(e, s, "closed-loop"), co).plant;
+}
+
+DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+  require_excitation(e, "projection");  // without r, uf = u and the plant input is not excited independently
+  const LoopSignals s = signals_of(e);
+  ProjectionFilterOptions po;
+  po.arx_order = arx_order;
+  po.markov_count = markov_count;
+  po.sample_time = e.sample_time;
+  po.era.order = model_order(e, o);
+  return identify_projection_filter(s.y, s.u, s.uf, po).plant;
+}
+
+void add_warning(Model& model, const std::string& warning) {
+  if (!model.extra.contains("warnings")) model.extra["warnings"] = nlohmann::json::array();
+  model.extra["warnings"].push_back(warning);
+}
+
+void validate_on(const Experiment& validation, Model& model) {
+  if (!validation.controller) {
+    add_warning(model, "no controller: the model cannot be simulated in closed loop, fit.nrmse not computed");
+    return;
+  }
+  const LoopSignals s = signals_of(validation);
+  const KnownController k = known_controller(*validation.controller, s.u_names, s.y_names);
+  const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state);
+  if (!nrmse.allFinite()) {
+    add_warning(model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
+    return;
+  }
+  for (Index j = 0; j < nrmse.size(); ++j) model.fit_nrmse[s.y_names[std::size_t(j)]] = nrmse(j);
+}
+
+}  // namespace
+
+const std::vector<std::string>& identification_methods() {
+  static const std::vector<std::string> methods = {"deadbeat", "deadbeat-iv", "okid", "closed-loop", "projection"};
+  return methods;
+}
+
+Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
+  if (begin < 0 || end > e.samples() || end - begin < 2)
+    throw Error(kWho + ": segment [" + std::to_string(begin) + ", " + std::to_string(end) + ") of a record of " +
+                std::to_string(e.samples()) + " samples");
+  Experiment s = e;
+  const Index n = end - begin;
+  s.t = e.t.segment(begin, n);
+  s.y = e.y.middleRows(begin, n);
+  s.u = e.u.middleRows(begin, n);
+  if (e.r.size() > 0) s.r = e.r.middleRows(begin, n);
+  if (e.controller && begin > 0) {
+    const LoopSignals all = loop_signals(e, kWho);
+    const KnownController k = known_controller(*e.controller, all.u_names, all.y_names);
+    const Eigen::MatrixXd states =
+        replay_controller(k, all.u.topRows(begin), all.y.topRows(begin), e.controller->initial_state);
+    s.controller->initial_state = states.row(begin - 1).transpose();
+  }
+  return s;
+}
+
+Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
+  const auto& methods = identification_methods();
+  if (std::find(methods.begin(), methods.end(), o.method) == methods.end())
+    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, deadbeat-iv, okid, closed-loop or projection)");
+  if (!(o.validation_fraction >= 0.0 && o.validation_fraction <= 0.9))
+    throw Error(kWho + ": validation fraction must be in [0, 0.9], got " + std::to_string(o.validation_fraction));
+  if (o.skip_samples < 0 || o.arx_order < 0 || o.markov_count < 0 || o.instrument_lags < 0)
+    throw Error(kWho + ": skip_samples, arx_order, markov_count and instrument_lags must be >= 0");
+  e.validate();
+  const Index usable = e.samples() - o.skip_samples;
+  const Index validation = static_cast<Index>(std::floor(o.validation_fraction * double(usable)));
+  if (usable - validation < 2)
+    throw InsufficientData(kWho + ": " + std::to_string(e.samples()) + " samples, " + std::to_string(o.skip_samples) +
+                           " skipped, leave nothing to fit");
+  const Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
+  const Index arx_order = o.arx_order > 0 ? o.arx_order : kDefaultArxOrder;
+  const Index markov_count = o.markov_count > 0 ? o.markov_count : kDefaultMarkovCount;
+
+  Model model;
+  model.plant_model = e.plant.model;
+  model.method = o.method;
+  model.sample_time = e.sample_time;
+  if (o.method == "deadbeat" || o.method == "deadbeat-iv") {
+    fit_deadbeat(fit, o, model);
+  } else {
+    const DiscreteSystem realization = o.method == "okid"          ? fit_okid(fit, o, arx_order, markov_count)
+                                       : o.method == "closed-loop" ? fit_closed_loop(fit, o, arx_order, markov_count)
+                                                                   : fit_projection(fit, o, arx_order, markov_count);
+    model.discrete = realization;
+    if (is_amb1dof(e) && realization.states() == 4)
+      add_amb1dof_structure(e, realization, model);
+    else
+      add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
+  }
+  model.discrete.sample_time = e.sample_time;
+  model.extra["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
+  if (validation >= 2) validate_on(experiment_segment(e, e.samples() - validation, e.samples()), model);
+  model.validate();
+  return model;
+}
+
+}  // namespace ambid::ident

@@ -1,0 +1,56 @@
+#pragma once
+// Identification of an experiment by method name -> the Model of model.json. The one entry
+// point that `ambid identify`, the identifier daemon and `ambid diagnose` share.
+//
+// Methods (all time domain, all from closed-loop data):
+//   deadbeat     seed 000 physical realisation (amb1dof_voltage only; needs the controller)
+//   deadbeat-iv  the same equations solved by instrumental variables with the delayed
+//                excitation r as instruments: consistent under sensor noise (needs r)
+//   okid         ARX of y on the plant input u, OKID Markov parameters, ERA (no controller needed)
+//   closed-loop  known-controller identification from r to y (Lee ch. 2; needs controller and r)
+//   projection   projection filters with unknown feedback (Lee ch. 4; needs the feedback uf = u - r)
+// For `amb1dof_voltage` every 4-state result is brought to physical coordinates (x, x', i1, i2)
+// and gives v1..v9 and the physical quantities (amb1dof_structure.hpp); `deadbeat` also gives
+// their one-sigma uncertainty.
+//
+// The record is split: the first (1 - validation_fraction) is fitted, the rest only validates
+// (fit.nrmse, closed-loop simulation with the recorded controller, closed_loop_validation.hpp).
+// Nothing here stabilises an identified model: an unstable plant comes out unstable.
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/experiment.hpp"
+#include "core/model_file.hpp"
+
+namespace ambid::ident {
+
+struct IdentifyOptions {
+  std::string method;              // one of identification_methods()
+  Eigen::Index order = 0;          // model states; 0: 4 for amb1dof_voltage, else ERA's suggestion
+  Eigen::Index arx_order = 0;      // okid/closed-loop/projection; 0: kDefaultArxOrder
+  Eigen::Index markov_count = 0;   // Markov parameters for ERA; 0: kDefaultMarkovCount
+  Eigen::Index skip_samples = 0;   // leading samples dropped (settling transient)
+  Eigen::Index instrument_lags = 0;  // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
+  double validation_fraction = 0.25;  // in [0, 0.9]; 0: no validation (fit.nrmse empty)
+};
+
+inline constexpr Eigen::Index kDefaultArxOrder = 8;
+inline constexpr Eigen::Index kDefaultMarkovCount = 30;
+inline constexpr Eigen::Index kDefaultInstrumentLags = 20;
+
+const std::vector<std::string>& identification_methods();
+
+// Throws Error naming the problem for an unknown method, an experiment the method cannot use
+// (no controller, a controller with feedthrough from u, no excitation, wrong plant model),
+// bad options; InsufficientData when the data cannot support the model (too short, not
+// exciting, rank deficient). Warnings (e.g. no validation possible) go to
+// Model::extra["warnings"] (an array of strings).
+Model identify_experiment(const Experiment& experiment, const IdentifyOptions& options);
+
+// Samples [begin, end) of `experiment` as an experiment of its own; the controller's
+// initial_state becomes its state at `begin` (the controller replayed on the record).
+Experiment experiment_segment(const Experiment& experiment, Eigen::Index begin, Eigen::Index end);
+
+}  // namespace ambid::ident
