@@ -1,0 +1,236 @@
+// `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
+// Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
+// identified (identifier/amb1dof_deadbeat); a model file is one window. The windows of the
+// first N inputs form the baseline, learned by the diagnostics engine (its mean and the
+// scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
+// of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the
+// trend store DIR/trends.sqlite.
+//
+// Time: the experiment contract has no time key, so inputs are laid end to end in the order
+// given: an experiment lasts its record length, a model file 1 s; a window's time is its end.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "core/experiment_io.hpp"
+#include "core/model_file.hpp"
+#include "diagnostics/experiment_windows.hpp"
+#include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/offline_diagnosis.hpp"
+#include "identifier/amb1dof_deadbeat.hpp"
+#include "services/cli/commands.hpp"
+#include "services/report/atomic_file.hpp"
+#include "services/report/figure.hpp"
+#include "services/report/svg.hpp"
+
+namespace ambid::cli {
+namespace {
+
+constexpr double kModelDuration = 1.0;  // s a model file occupies on the time axis
+
+struct DiagnoseArguments {
+  std::vector<std::string> inputs;
+  std::size_t baseline = 3;
+  double window = 0.25;
+  std::string plant_id = "plant";
+  std::string out;
+};
+
+struct Input {
+  std::string file;
+  std::string kind;  // "experiment" | "model"
+  std::vector<diag::EstimateWindow> windows;
+};
+
+bool is_model_file(const std::filesystem::path& path) {
+  if (path.extension() != ".json") return false;
+  std::ifstream in(path);
+  if (!in) throw Error(path.string() + ": cannot open");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string() + ": not valid JSON: " + e.what());
+  }
+  return j.is_object() && j.contains("format") && j["format"] == kModelFormat;
+}
+
+Input model_input(const std::string& file, double start, const std::string& plant_id) {
+  const Model m = read_model(file);
+  if (m.plant_model != "amb1dof_voltage")
+    throw Error(file + ": plant_model is '" + m.plant_model + "'; diagnose knows the parameters of amb1dof_voltage only");
+  try {
+    return {file, "model", {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)}};
+  } catch (const Error& e) {
+    throw Error(file + ": " + e.what());
+  }
+}
+
+Input experiment_input(const std::string& file, double start, double window, const std::string& plant_id) {
+  const Experiment e = read_experiment(file).experiment;
+  const double length = double(e.samples()) * e.sample_time;
+  const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
+  Input in{file, "experiment", {}};
+  try {
+    const std::vector<Experiment> parts = diag::split_experiment(e, samples);
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      try {
+        const double end = start + double(i + 1) * double(samples) * e.sample_time;
+        in.windows.push_back(diag::estimate_window(ident::identify_amb1dof_deadbeat(parts[i]), end, plant_id,
+                                                   diag::Source::replay));
+      } catch (const Error& err) {
+        throw Error("window " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + err.what());
+      }
+    }
+  } catch (const Error& err) {
+    throw Error(file + " (" + std::to_string(length) + " s): " + err.what());
+  }
+  return in;
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
+                              const diag::OfflineDiagnosis& d) {
+  nlohmann::json j;
+  j["format"] = "ambid-diagnosis/1";
+  j["plant_id"] = a.plant_id;
+  j["baseline_inputs"] = a.baseline;
+  j["baseline_windows"] = baseline_windows;
+  j["inputs"] = nlohmann::json::array();
+  for (const Input& in : inputs)
+    j["inputs"].push_back({{"file", in.file}, {"kind", in.kind}, {"windows", in.windows.size()},
+                           {"time_to", in.windows.back().time}});
+  for (const auto& [key, b] : d.baselines)
+    j["baselines"][key.second] = {{"mean", b.mean}, {"extra_spread", b.extra_spread}, {"mean_sigma", b.mean_sigma},
+                                  {"reported_sigma", b.reported_sigma}, {"windows", b.windows}};
+  for (const auto& [key, level] : d.final_levels) j["levels"][key.second] = diag::to_string(level);
+  j["alerts"] = nlohmann::json::array();
+  for (const diag::Alert& alert : d.alerts) j["alerts"].push_back(diag::to_json(alert));
+  return j;
+}
+
+std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
+                         const diag::OfflineDiagnosis& d) {
+  std::ostringstream s;
+  s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first " << a.baseline
+    << " (" << baseline_windows << " windows)\n\n";
+  for (const Input& in : inputs)
+    s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s), to t = " << number(in.windows.back().time)
+      << " s\n";
+  s << "\n  parameter  level  baseline      extra spread  latest\n";
+  for (const auto& [key, level] : d.final_levels) {
+    const diag::Baseline& b = d.baselines.at(key);
+    double latest = 0.0;
+    for (const diag::ParameterEstimate& e : inputs.back().windows.back().estimates)
+      if (e.parameter == key.second) latest = e.value;
+    char row[160];
+    std::snprintf(row, sizeof row, "  %-9s  %-5s  %-12.6g  %-12.3g  %.6g\n", key.second.c_str(),
+                  std::string(diag::to_string(level)).c_str(), b.mean, b.extra_spread, latest);
+    s << row;
+  }
+  s << "\nalerts (" << d.alerts.size() << "):\n";
+  if (d.alerts.empty()) s << "  none\n";
+  for (const diag::Alert& alert : d.alerts)
+    s << "  t = " << number(alert.time) << " s  " << diag::to_string(alert.level) << "  " << alert.fault
+      << (alert.channel ? " channel " + std::to_string(*alert.channel) : std::string()) << "  " << alert.parameter << ": "
+      << alert.message << "\n";
+  s << "\nDetection works on z = (estimate - baseline mean) / sigma_eff with sigma_eff = sqrt(sigma^2 + extra^2):\n"
+       "the identifier's one-sigma widened by the scatter of the baseline windows it does not explain.\n";
+  return s.str();
+}
+
+void write_trend_plots(const std::filesystem::path& dir, const std::vector<Input>& inputs, std::size_t baseline_windows,
+                       const diag::OfflineDiagnosis& d, double error_fraction) {
+  for (const auto& [key, b] : d.baselines) {
+    std::vector<double> tb, vb, tm, vm;
+    std::size_t n = 0;
+    for (const Input& in : inputs)
+      for (const diag::EstimateWindow& w : in.windows)
+        for (const diag::ParameterEstimate& e : w.estimates) {
+          if (e.parameter != key.second) continue;
+          (n < baseline_windows ? tb : tm).push_back(w.time);
+          (n < baseline_windows ? vb : vm).push_back(e.value);
+          ++n;
+        }
+    report::Axes axes;
+    axes.x_label = "time [s]";
+    axes.y_label = key.second;
+    axes.series = {report::markers("baseline windows", tb, vb), report::markers("diagnosed windows", tm, vm)};
+    axes.reference_lines.push_back({b.mean, "baseline", "#444444", "4 3"});
+    const std::string pct = number(100.0 * error_fraction);
+    axes.reference_lines.push_back({b.mean * (1.0 + error_fraction), "+" + pct + " % (ERROR)", "#cc3333", "6 3"});
+    axes.reference_lines.push_back({b.mean * (1.0 - error_fraction), "-" + pct + " % (ERROR)", "#cc3333", "6 3"});
+    report::Figure figure;
+    figure.title = key.first + ": " + key.second + " (" + std::string(diag::to_string(d.final_levels.at(key))) + ")";
+    figure.height = 400.0;
+    figure.axes = {axes};
+    report::write_file_atomically(dir / ("trend_" + key.second + ".svg"), report::render_svg(figure));
+  }
+}
+
+void run(const DiagnoseArguments& a) {
+  if (a.baseline >= a.inputs.size())
+    throw Error("--baseline " + std::to_string(a.baseline) + " leaves nothing to diagnose: " +
+                std::to_string(a.inputs.size()) + " input(s) given, more than the baseline are needed");
+  if (!(a.window >= 0.0) || !std::isfinite(a.window))
+    throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(a.window));
+  std::vector<Input> inputs;
+  double start = 0.0;
+  for (const std::string& file : a.inputs) {
+    if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
+    inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
+                                         : experiment_input(file, start, a.window, a.plant_id));
+    start = inputs.back().windows.back().time;
+  }
+  std::size_t baseline_windows = 0;
+  std::vector<diag::EstimateWindow> windows;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    if (i < a.baseline) baseline_windows += inputs[i].windows.size();
+    windows.insert(windows.end(), inputs[i].windows.begin(), inputs[i].windows.end());
+  }
+  if (baseline_windows < diag::kMinLearningWindows)
+    throw Error("the first " + std::to_string(a.baseline) + " input(s) give " + std::to_string(baseline_windows) +
+                " window(s); the baseline needs at least " + std::to_string(diag::kMinLearningWindows) +
+                " (a shorter --window or a larger --baseline)");
+  const std::filesystem::path dir(a.out);
+  std::filesystem::create_directories(dir);
+  const diag::EngineConfig config;
+  const diag::OfflineDiagnosis d = diag::diagnose_offline(windows, baseline_windows, dir / "trends.sqlite", config);
+  report::write_file_atomically(dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n");
+  const std::string summary = summary_text(a, inputs, baseline_windows, d);
+  report::write_file_atomically(dir / "summary.txt", summary);
+  write_trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction);
+  std::cout << summary << "wrote " << (dir / "diagnosis.json").string() << ", summary.txt, trend_*.svg, trends.sqlite\n";
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app) {
+  auto args = std::make_shared<DiagnoseArguments>();
+  CLI::App* cmd = app.add_subcommand("diagnose", "diagnose a time-ordered list of experiments or model files");
+  cmd->add_option("inputs", args->inputs, "experiments (.json sidecar, .csv or stem) or model.json files, oldest first")
+      ->required();
+  cmd->add_option("--baseline", args->baseline, "how many of the first inputs form the baseline")->capture_default_str();
+  cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
+      ->capture_default_str();
+  cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
+  cmd->add_option("--out", args->out, "output directory")->required();
+  cmd->callback([args] { run(*args); });
+}
+
+}  // namespace ambid::cli

@@ -1,0 +1,29 @@
+#include "diagnostics/simulated_windows.hpp"
+
+#include <cmath>
+
+#include "diagnostics/experiment_windows.hpp"
+#include "diagnostics/identified_estimates.hpp"
+#include "identifier/amb1dof_deadbeat.hpp"
+#include "plant_sim/amb1dof_parameters.hpp"
+#include "plant_sim/scenario.hpp"
+
+namespace ambid::diag::testing {
+
+EstimateWindow SimulatedBearing::estimate(std::size_t n) const {
+  sim::ScenarioOptions o;
+  o.duration = settle + window;
+  o.amplitude = amplitude;
+  o.position_noise = position_noise;
+  o.current_noise = current_noise;
+  o.seed = seed + n;
+  const auto nominal = sim::Amb1dofParameters::nominal().to_map();
+  for (const auto& [name, relative] : change(n)) o.true_parameters[name] = nominal.at(name) * (1.0 + relative);
+  const Experiment run = sim::simulate_scenario(o);
+  const auto samples = static_cast<Eigen::Index>(std::lround(window / o.sample_time));
+  const Experiment last = split_experiment(run, samples).back();
+  return estimate_window(ident::identify_amb1dof_deadbeat(last), static_cast<double>(n + 1) * window, plant_id,
+                         Source::sim);
+}
+
+}  // namespace ambid::diag::testing
