@@ -86,7 +86,12 @@ void add_frf_command(CLI::App& app) {
     const Experiment& e = read.experiment;
     require_loop_data(e, args->experiment);
     args->options.fit = !args->no_fit;
-    const ident::FrfReport r = ident::analyse_frf(e, args->options);
+    ident::FrfReport r;
+    try {
+      r = ident::analyse_frf(e, args->options);
+    } catch (const InsufficientData& error) {  // say which file cannot support an FRF
+      throw InsufficientData(args->experiment + ": " + error.what());
+    }
     const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
     report::write_file_atomically(std::filesystem::path(args->out) / "frf.json",
                                   frf_json(r, e, args->experiment, args->options).dump(1) + "\n");

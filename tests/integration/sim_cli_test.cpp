@@ -3,13 +3,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "cli_run_support.hpp"
 #include "core/experiment_io.hpp"
 
 namespace ambid {
@@ -18,27 +15,9 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult run_ambid(const std::string& args) {
-  const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(AMBID_BINARY_DIR) / "test-output" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using test::CommandResult;
+using test::fresh_dir;
+using test::run_ambid;
 
 TEST(SimCli, WritesAnExperimentTheReaderAccepts) {
   const fs::path dir = fresh_dir("sim_nominal");

@@ -1,0 +1,32 @@
+#include "cli_run_support.hpp"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+
+namespace ambid::test {
+
+CommandResult run_ambid(const std::string& args) {
+  const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(AMBID_BINARY_DIR) / "test-output" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+bool well_formed_xml(const std::filesystem::path& file) {
+  return std::system(("xmllint --noout '" + file.string() + "' 2>/dev/null").c_str()) == 0;
+}
+
+}  // namespace ambid::test

@@ -1,0 +1,22 @@
+#pragma once
+// Running the `ambid` binary from integration tests.
+#include <filesystem>
+#include <string>
+
+namespace ambid::test {
+
+struct CommandResult {
+  int status;          // exit code, -1 when the program did not exit normally
+  std::string output;  // stdout and stderr
+};
+
+// Runs `ambid ARGS` (a shell command line) and collects its output.
+CommandResult run_ambid(const std::string& args);
+
+// An empty directory build/test-output/NAME.
+std::filesystem::path fresh_dir(const std::string& name);
+
+// True when libxml2's parser accepts the file as well-formed XML (xmllint from libxml2-utils).
+bool well_formed_xml(const std::filesystem::path& file);
+
+}  // namespace ambid::test
