@@ -75,6 +75,10 @@ bool refine_output_error(const FitData& data, Coefficients& c, int iterations) {
   options.parameter_tolerance = 1e-14;
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
+  // Ceres logs an error through glog when it gives up after consecutive invalid steps (steps to
+  // a non-finite misfit, common for over-parameterised orders); libraries must not print, so
+  // let such runs end on the iteration limit instead (the result is checked below either way).
+  options.max_num_consecutive_invalid_steps = iterations;
   options.num_threads = 1;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);

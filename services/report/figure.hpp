@@ -42,7 +42,7 @@ struct Series {
 // A horizontal line across the whole axes at y = value (an alarm limit, a zone boundary).
 struct ReferenceLine {
   double value = 0.0;
-  std::string label;  // written at the right end of the line; may be empty
+  std::string label;  // written above the left end of the line; may be empty
   std::string color = "#888888";
   std::string dash = "4 3";
 };
@@ -62,6 +62,7 @@ struct Axes {
   std::vector<ReferenceLine> reference_lines;
   std::optional<Range> x_range;  // default: the data (rounded out to ticks / whole decades)
   std::optional<Range> y_range;
+  double y_step = 0.0;  // linear y with a y_range: tick spacing (e.g. 90 for degrees); 0: automatic
   bool legend = true;            // draw the legend box when some series has a label
 };
 

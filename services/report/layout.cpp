@@ -57,7 +57,8 @@ std::pair<Extent, Extent> data_extent(const Axes& axes) {
 }
 
 Ticks choose_ticks(const std::optional<Range>& fixed, const Extent& data, bool log,
-                   const char* axis_name, std::size_t index) {
+                   const char* axis_name, std::size_t index, double step = 0.0) {
+  if (fixed && step > 0.0 && !log) return linear_ticks_with_step(fixed->lo, fixed->hi, step);
   if (fixed) return log ? log_ticks_fixed(fixed->lo, fixed->hi)
                         : linear_ticks_fixed(fixed->lo, fixed->hi);
   if (data.empty()) {
@@ -108,7 +109,7 @@ std::vector<AxesLayout> layout_figure(const Figure& figure) {
     }
     const Extent& x_data = figure.share_x ? shared_x : extents[i].first;
     layout.x_ticks = choose_ticks(axes.x_range, x_data, axes.log_x, "x", i);
-    layout.y_ticks = choose_ticks(axes.y_range, extents[i].second, axes.log_y, "y", i);
+    layout.y_ticks = choose_ticks(axes.y_range, extents[i].second, axes.log_y, "y", i, axes.y_step);
     layout.x_scale = Scale(layout.x_ticks.range.lo, layout.x_ticks.range.hi, layout.left,
                            layout.left + layout.width, axes.log_x);
     layout.y_scale = Scale(layout.y_ticks.range.lo, layout.y_ticks.range.hi,

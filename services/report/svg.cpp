@@ -78,7 +78,7 @@ void draw_reference_lines(std::ostringstream& svg, const Axes& axes, const AxesL
         << "\" stroke=\"" << xml_escape(line.color) << "\" stroke-dasharray=\""
         << xml_escape(line.dash) << "\"/>\n";
     if (!line.label.empty()) {
-      text(svg, layout.left + layout.width - 4, y - 3, line.label, "end",
+      text(svg, layout.left + 4, y - 3, line.label, "start",
            " fill=\"" + xml_escape(line.color) + "\"");
     }
   }

@@ -96,6 +96,16 @@ Ticks linear_ticks_fixed(double lo, double hi, int target_count) {
   return linear_ticks_between(lo, hi, step, std::ceil(lo / step - 1e-9) * step);
 }
 
+Ticks linear_ticks_with_step(double lo, double hi, double step) {
+  check_bounds(lo, hi, false);
+  if (!(step > 0.0) || !std::isfinite(step) || (hi - lo) / step > 1000.0) {
+    std::ostringstream message;
+    message << "tick step " << step << " does not fit the axis range [" << lo << ", " << hi << "]";
+    throw Error(message.str());
+  }
+  return linear_ticks_between(lo, hi, step, std::ceil(lo / step - 1e-9) * step);
+}
+
 Ticks log_ticks(double lo, double hi) {
   check_bounds(lo, hi, true);
   int first = static_cast<int>(std::floor(std::log10(lo) + 1e-9));

@@ -20,6 +20,9 @@ struct Ticks {
 Ticks linear_ticks(double lo, double hi, int target_count = 6);
 Ticks log_ticks(double lo, double hi);
 
+// Ticks at the multiples of `step` (> 0) in [lo, hi], which is kept exactly.
+Ticks linear_ticks_with_step(double lo, double hi, double step);
+
 // Like the above, but keeps [lo, hi] exactly (a user-given range) and only places ticks inside.
 Ticks linear_ticks_fixed(double lo, double hi, int target_count = 6);
 Ticks log_ticks_fixed(double lo, double hi);

@@ -66,6 +66,15 @@ inline std::complex<double> sales_pd_zoh(std::complex<double> z, double T, doubl
 
 inline LoopSignals sales_signals() { return LoopSignals{{"y"}, {"u"}, {"r"}}; }
 
+// n samples of seeded white Gaussian noise of the given std, one column.
+inline Eigen::MatrixXd gaussian(Eigen::Index n, double std, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, std);
+  Eigen::MatrixXd r(n, 1);
+  for (Eigen::Index k = 0; k < n; ++k) r(k, 0) = normal(rng);
+  return r;
+}
+
 // One period (N samples) of a random-phase multisine with unit amplitude on each line.
 inline Eigen::VectorXd multisine_period(Eigen::Index N, const std::vector<Eigen::Index>& lines, std::uint64_t seed) {
   std::mt19937_64 rng(seed);

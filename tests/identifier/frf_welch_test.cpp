@@ -21,13 +21,7 @@ using test::kPi;
 
 constexpr double kT = 1e-4;
 
-Eigen::MatrixXd gaussian(Eigen::Index n, double std, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> normal(0.0, std);
-  Eigen::MatrixXd r(n, 1);
-  for (Eigen::Index k = 0; k < n; ++k) r(k, 0) = normal(rng);
-  return r;
-}
+using test::gaussian;
 
 double median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());

@@ -6,7 +6,7 @@
 namespace ambid::cli_test {
 
 struct CommandResult {
-  int status;
+  int status;          // exit code, -1 when the program did not exit normally
   std::string output;  // stdout and stderr
 };
 
@@ -15,5 +15,8 @@ CommandResult run_ambid(const std::string& args);
 
 // An empty directory under the build tree for one test's files.
 std::filesystem::path fresh_dir(const std::string& name);
+
+// True when libxml2's parser accepts the file as well-formed XML (xmllint from libxml2-utils).
+bool well_formed_xml(const std::filesystem::path& file);
 
 }  // namespace ambid::cli_test

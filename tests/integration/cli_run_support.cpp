@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 
 namespace ambid::cli_test {
 
@@ -22,6 +23,10 @@ std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+bool well_formed_xml(const std::filesystem::path& file) {
+  return std::system(("xmllint --noout '" + file.string() + "' 2>/dev/null").c_str()) == 0;
 }
 
 }  // namespace ambid::cli_test

@@ -1,0 +1,102 @@
+// `ambid frf`: frequency-domain analysis of a closed-loop experiment — the open-loop plant of
+// every OUTPUT/INPUT pair recovered from the closed-loop data, its rational fit (poles, the
+// unstable ones kept), the input sensitivity of every loop with its ISO 14839-3 zone. Writes
+// DIR/frf.json and SVG Bode / sensitivity plots, prints a short summary.
+#include <iostream>
+#include <memory>
+
+#include "core/error.hpp"
+#include "core/experiment_io.hpp"
+#include "identifier/frf_analysis.hpp"
+#include "services/cli/commands.hpp"
+#include "services/cli/frf_output.hpp"
+#include "services/report/atomic_file.hpp"
+#include "services/report/format.hpp"
+
+namespace ambid::cli {
+namespace {
+
+struct FrfArguments {
+  std::string experiment;
+  std::string out;
+  ident::FrfAnalysisOptions options;
+  bool no_fit = false;
+};
+
+using report::format_number;
+
+// What the plots and frf.json need beyond the plant: refuse data that cannot give them.
+void require_loop_data(const Experiment& e, const std::string& path) {
+  if (!e.has_excitation())
+    throw InsufficientData(path + ": records no excitation r (signals.r); the plant FRF from closed-loop data needs one");
+  if (!e.controller)
+    throw InsufficientData(path + ": records no controller; the sensitivity functions (ISO 14839-3) need the "
+                                  "controller that closed the loop");
+}
+
+std::string complex_text(std::complex<double> z) {
+  std::string text = format_number(z.real(), 6);
+  if (z.imag() != 0.0) text += (z.imag() > 0 ? "+" : "-") + format_number(std::abs(z.imag()), 6) + "j";
+  return text;
+}
+
+void print_summary(const ident::FrfReport& r, const std::string& path, const std::string& out, std::size_t plots,
+                   double band_top_hz) {
+  std::cout << "ambid frf: " << path << ": " << r.method << " estimate (" << r.excitation << " excitation, "
+            << r.blocks << (r.method == "periodic" ? " blocks" : " segments") << "), " << r.frequency_hz.size()
+            << " lines " << format_number(r.frequency_hz(0)) << "-"
+            << format_number(r.frequency_hz(r.frequency_hz.size() - 1)) << " Hz\n";
+  for (const ident::SensitivityPeak& p : r.sensitivity_peaks)
+    std::cout << "  sensitivity " << p.loop << ": peak " << format_number(p.magnitude_db) << " dB at "
+              << format_number(p.frequency_hz) << " Hz, ISO 14839-3 zone " << ident::to_string(p.zone) << "\n";
+  for (const ident::FittedPair& f : r.fits) {
+    const Eigen::VectorXcd poles = f.fit.model.poles();
+    std::string in_band, beyond;
+    for (Eigen::Index i = 0; i < poles.size(); ++i) {
+      if (poles(i).real() <= 0.0) continue;
+      (pole_in_band(poles(i), band_top_hz) ? in_band : beyond) += " " + complex_text(poles(i));
+    }
+    std::cout << "  model " << f.name << ": order " << f.fit.model.numerator_degree() << "/"
+              << f.fit.model.denominator_degree() << ", unstable poles:" << (in_band.empty() ? " none" : in_band + " rad/s");
+    if (!beyond.empty()) std::cout << " (beyond the fitted band, not resolved:" << beyond << ")";
+    std::cout << "\n";
+  }
+  for (const std::string& note : r.notes) std::cout << "  note: " << note << "\n";
+  std::cout << "  wrote " << out << "/frf.json and " << plots << " plots\n";
+}
+
+}  // namespace
+
+void add_frf_command(CLI::App& app) {
+  auto args = std::make_shared<FrfArguments>();
+  auto& o = args->options;
+  CLI::App* frf = app.add_subcommand("frf", "plant FRFs from closed-loop data, rational fits, ISO 14839-3 sensitivity");
+  frf->add_option("experiment", args->experiment, "experiment (.json sidecar, .csv or stem)")->required();
+  frf->add_option("--out", args->out, "output directory: frf.json and SVG plots")->required();
+  frf->add_option("--f-min", o.f_min, "lowest line kept (Hz)")->capture_default_str();
+  frf->add_option("--f-max", o.f_max, "highest line kept (Hz), 0 for all")->capture_default_str();
+  frf->add_option("--fit-f-max", o.fit_f_max, "highest line fitted (Hz), 0: 0.1 / sample_time")->capture_default_str();
+  frf->add_option("--max-order", o.fit_max_order, "largest denominator degree of the rational fit")
+      ->capture_default_str();
+  frf->add_option("--confidence", o.confidence, "confidence of the noise bounds")->capture_default_str();
+  frf->add_flag("--no-fit", args->no_fit, "skip the rational fits");
+  frf->callback([args] {
+    ReadResult read = read_experiment(args->experiment);
+    for (const std::string& w : read.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
+    const Experiment& e = read.experiment;
+    require_loop_data(e, args->experiment);
+    args->options.fit = !args->no_fit;
+    ident::FrfReport r;
+    try {
+      r = ident::analyse_frf(e, args->options);
+    } catch (const InsufficientData& error) {  // say which file cannot support an FRF
+      throw InsufficientData(args->experiment + ": " + error.what());
+    }
+    const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
+    report::write_file_atomically(std::filesystem::path(args->out) / "frf.json",
+                                  frf_json(r, e, args->experiment, args->options).dump(1) + "\n");
+    print_summary(r, args->experiment, args->out, plots.size(), fit_band_top_hz(e, args->options));
+  });
+}
+
+}  // namespace ambid::cli
