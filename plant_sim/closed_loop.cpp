@@ -108,8 +108,12 @@ struct Loop {
       out.u.row(k) = u_cmd.transpose();
       if (excited) out.r.row(k) = (r_op + options.excitation.row(k).transpose()).transpose();
 
-      u_applied = u_cmd.cwiseMax(lower).cwiseMin(upper);
-      if (limited && (u_applied.array() != u_cmd.array()).any()) ++saturated;
+      if (limited) {
+        u_applied = u_cmd.cwiseMax(lower).cwiseMin(upper);
+        if ((u_applied.array() != u_cmd.array()).any()) ++saturated;
+      } else {
+        u_applied = u_cmd;
+      }
       if (process_noise)
         for (Eigen::Index i = 0; i < w.size(); ++i) w(i) = options.process_noise_std(i) * normal(rng);
       try {
