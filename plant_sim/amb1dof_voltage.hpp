@@ -34,6 +34,7 @@ class Amb1dofVoltage : public Plant {
   Eigen::VectorXd derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& w) const override;
   Eigen::VectorXd output(const Eigen::VectorXd& x) const override;
+  void output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override;
 
   // RK4 on the fixed-size right-hand side: the same scheme as Rk4Integrator, without heap
   // allocation (the closed-loop runner's hot path).

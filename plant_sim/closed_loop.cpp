@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <random>
 #include <sstream>
+#include <vector>
 
 #include "core/error.hpp"
 #include "plant_sim/integrator.hpp"
@@ -48,6 +49,92 @@ void check_size(const char* what, const Eigen::VectorXd& v, Eigen::Index expecte
   if (v.size() != 0 && !v.allFinite()) throw Error(std::string("closed loop: ") + what + " is not finite");
 }
 
+// Controller input j takes signal `signal` (an index into y, u or r).
+struct Route {
+  Eigen::Index input, signal;
+};
+
+// The sample loop with its buffers allocated once: run() allocates nothing per sample. Its
+// template arguments are the controller's states, inputs and outputs (Eigen::Dynamic for any).
+struct Loop {
+  const Plant& truth;
+  const ClosedLoopOptions& options;
+  int substeps;
+  double dt;
+  bool excited, limited;
+  const Eigen::VectorXd &lower, &upper;
+  std::vector<Route> from_output{}, from_input{}, from_excitation{};
+  Eigen::VectorXd y_op{}, u_op{}, r_op{};
+  Eigen::VectorXd x{};  // plant state, starts at the operating point
+
+  // Fills out.t, y, u, r; returns the number of saturated samples.
+  template <int NC, int NV, int NU>
+  Eigen::Index run(const StateSpaceController& ctrl, Experiment& out) {
+    using StateVector = Eigen::Matrix<double, NC, 1>;
+    const Eigen::Matrix<double, NC, NC> A = ctrl.A;
+    const Eigen::Matrix<double, NC, NV> B = ctrl.B;
+    const Eigen::Matrix<double, NU, NC> C = ctrl.C;
+    const Eigen::Matrix<double, NU, NV> D = ctrl.D;
+    StateVector xc = ctrl.initial_state.size() ? StateVector(ctrl.initial_state)
+                                               : StateVector(StateVector::Zero(ctrl.states()));
+    StateVector xc_next(xc.size());
+    Eigen::Matrix<double, NV, 1> v = Eigen::Matrix<double, NV, 1>::Zero(B.cols());
+    Eigen::Matrix<double, NU, 1> du(C.rows()), u_cmd(C.rows());
+    Eigen::VectorXd y(out.y.cols()), u_applied(C.rows());
+    Eigen::VectorXd w = Eigen::VectorXd::Zero(std::ssize(truth.disturbance_names()));
+
+    std::mt19937_64 rng(options.seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const bool measurement_noise = options.measurement_noise_std.size() != 0;
+    const bool process_noise = options.process_noise_std.size() != 0;
+    Eigen::Index saturated = 0;
+    for (Eigen::Index k = 0; k < out.t.size(); ++k) {
+      truth.output_into(x, y);
+      if (measurement_noise)
+        for (Eigen::Index i = 0; i < y.size(); ++i) y(i) += options.measurement_noise_std(i) * normal(rng);
+
+      // uf = C xc + D v needs v, whose u entries need uf: D has zero u columns (validated), so
+      // evaluate uf with those entries zero, then fill them in for the state update.
+      for (const auto [j, i] : from_output) v(j) = y(i) - y_op(i);
+      for (const auto [j, i] : from_excitation) v(j) = options.excitation(k, i);
+      for (const auto [j, i] : from_input) v(j) = 0.0;
+      du.noalias() = C * xc + D * v;
+      if (excited) du += options.excitation.row(k).transpose();
+      for (const auto [j, i] : from_input) v(j) = du(i);
+
+      out.t(k) = double(k) * dt;
+      out.y.row(k) = y.transpose();
+      u_cmd = u_op + du;
+      out.u.row(k) = u_cmd.transpose();
+      if (excited) out.r.row(k) = (r_op + options.excitation.row(k).transpose()).transpose();
+
+      if (limited) {
+        u_applied = u_cmd.cwiseMax(lower).cwiseMin(upper);
+        if ((u_applied.array() != u_cmd.array()).any()) ++saturated;
+      } else {
+        u_applied = u_cmd;
+      }
+      if (process_noise)
+        for (Eigen::Index i = 0; i < w.size(); ++i) w(i) = options.process_noise_std(i) * normal(rng);
+      try {
+        truth.advance(x, u_applied, w, dt, substeps);
+      } catch (const Error& e) {
+        std::ostringstream msg;
+        msg << "closed loop: at t = " << out.t(k) << " s: " << e.what();
+        throw Error(msg.str());
+      }
+      if (!x.allFinite()) {
+        std::ostringstream msg;
+        msg << "closed loop: the plant state became non-finite at t = " << out.t(k) << " s (unstable loop?)";
+        throw Error(msg.str());
+      }
+      xc_next.noalias() = A * xc + B * v;
+      xc = xc_next;
+    }
+    return saturated;
+  }
+};
+
 }  // namespace
 
 Experiment run_closed_loop(const Plant& truth, const Experiment& header, const ClosedLoopOptions& options,
@@ -90,77 +177,35 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
                                                            : Eigen::VectorXd::Constant(nu, INFINITY);
   const int substeps = options.substeps > 0 ? options.substeps : kDefaultSubsteps;
 
-  std::vector<InputRoute> routes;
-  for (const auto& name : ctrl.inputs) routes.push_back(route_of(name, header));
-
-  const Eigen::VectorXd y_op = header.operating_values(header.y_names);
-  const Eigen::VectorXd u_op = header.operating_values(header.u_names);
-  const Eigen::VectorXd r_op = header.operating_values(header.r_names);
+  Loop loop{truth, options, substeps, dt, excited, limited, lower, upper};
+  for (std::size_t j = 0; j < ctrl.inputs.size(); ++j) {
+    const InputRoute route = route_of(ctrl.inputs[j], header);
+    auto& target = route.source == Source::output ? loop.from_output
+                   : route.source == Source::input ? loop.from_input
+                                                   : loop.from_excitation;
+    target.push_back({Eigen::Index(j), route.index});
+  }
+  loop.y_op = header.operating_values(header.y_names);
+  loop.u_op = header.operating_values(header.u_names);
+  loop.r_op = header.operating_values(header.r_names);
 
   // Start at the nominal operating point: named states take their operating value.
-  Eigen::VectorXd x = truth.equilibrium_state();
+  loop.x = truth.equilibrium_state();
   const auto state_names = truth.state_names();
   for (std::size_t i = 0; i < state_names.size(); ++i)
-    if (header.operating_point.count(state_names[i])) x(Eigen::Index(i)) = header.operating_point.at(state_names[i]);
-  Eigen::VectorXd xc = ctrl.initial_state.size() ? ctrl.initial_state : Eigen::VectorXd::Zero(ctrl.states());
-
-  std::mt19937_64 rng(options.seed);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  const bool measurement_noise = options.measurement_noise_std.size() != 0;
-  const bool process_noise = options.process_noise_std.size() != 0;
+    if (header.operating_point.count(state_names[i]))
+      loop.x(Eigen::Index(i)) = header.operating_point.at(state_names[i]);
 
   Experiment out = header;
   out.t.resize(N);
   out.y.resize(N, ny);
   out.u.resize(N, nu);
   out.r.resize(excited ? N : 0, nr);
-
-  Eigen::VectorXd y(ny), dy(ny), du(nu), u_applied(nu), w = Eigen::VectorXd::Zero(nw);
-  Eigen::VectorXd v(std::ssize(ctrl.inputs)), xc_next(ctrl.states());
-  Eigen::Index saturated = 0;
-  for (Eigen::Index k = 0; k < N; ++k) {
-    y = truth.output(x);
-    if (measurement_noise)
-      for (Eigen::Index i = 0; i < ny; ++i) y(i) += options.measurement_noise_std(i) * normal(rng);
-    dy = y - y_op;
-
-    // uf = C xc + D v needs v, whose u entries need uf: D has zero u columns (validated), so
-    // evaluate uf with those entries zero, then fill them in for the state update.
-    for (std::size_t j = 0; j < routes.size(); ++j) {
-      const auto [source, i] = routes[j];
-      v(Eigen::Index(j)) = source == Source::output ? dy(i)
-                           : source == Source::excitation ? options.excitation(k, i)
-                                                          : 0.0;
-    }
-    du.noalias() = ctrl.C * xc + ctrl.D * v;
-    if (excited) du += options.excitation.row(k).transpose();
-    for (std::size_t j = 0; j < routes.size(); ++j)
-      if (routes[j].source == Source::input) v(Eigen::Index(j)) = du(routes[j].index);
-
-    out.t(k) = double(k) * dt;
-    out.y.row(k) = y.transpose();
-    out.u.row(k) = (u_op + du).transpose();
-    if (excited) out.r.row(k) = (r_op + options.excitation.row(k).transpose()).transpose();
-
-    u_applied = (u_op + du).cwiseMax(lower).cwiseMin(upper);
-    if (limited && (u_applied.array() != (u_op + du).array()).any()) ++saturated;
-    if (process_noise)
-      for (Eigen::Index i = 0; i < nw; ++i) w(i) = options.process_noise_std(i) * normal(rng);
-    try {
-      truth.advance(x, u_applied, w, dt, substeps);
-    } catch (const Error& e) {
-      std::ostringstream msg;
-      msg << "closed loop: at t = " << out.t(k) << " s: " << e.what();
-      throw Error(msg.str());
-    }
-    if (!x.allFinite()) {
-      std::ostringstream msg;
-      msg << "closed loop: the plant state became non-finite at t = " << out.t(k) << " s (unstable loop?)";
-      throw Error(msg.str());
-    }
-    xc_next.noalias() = ctrl.A * xc + ctrl.B * v;
-    xc.swap(xc_next);
-  }
+  const Eigen::Index nc = ctrl.states(), nv = std::ssize(ctrl.inputs);
+  // The observer controller of amb1dof_voltage (4 + 1 states; inputs u1, u2, x, i1, i2) runs
+  // with fixed-size matrices; any other controller with dynamic ones.
+  const Eigen::Index saturated = nc == 5 && nv == 5 && nu == 2 ? loop.run<5, 5, 2>(ctrl, out)
+                                                               : loop.run<Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>(ctrl, out);
   if (statistics) statistics->saturated_samples = saturated;
   return out;
 }

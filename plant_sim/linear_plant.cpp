@@ -76,8 +76,14 @@ Eigen::VectorXd LinearPlant::derivative(const Eigen::VectorXd& x, const Eigen::V
 }
 
 Eigen::VectorXd LinearPlant::output(const Eigen::VectorXd& x) const {
+  Eigen::VectorXd y;
+  output_into(x, y);
+  return y;
+}
+
+void LinearPlant::output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   require_size(x, named_.system.states(), "state");
-  return named_.system.C * x;
+  y.noalias() = named_.system.C * x;
 }
 
 Eigen::VectorXd LinearPlant::equilibrium_state() const {

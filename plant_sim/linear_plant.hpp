@@ -40,6 +40,7 @@ class LinearPlant : public Plant {
   Eigen::VectorXd derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                              const Eigen::VectorXd& w) const override;
   Eigen::VectorXd output(const Eigen::VectorXd& x) const override;
+  void output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) const override;
   Eigen::VectorXd equilibrium_state() const override;
   Eigen::VectorXd equilibrium_input() const override;
 

@@ -24,6 +24,9 @@ class Plant {
                                      const Eigen::VectorXd& w) const = 0;
   // y = h(x), the noise-free measurement.
   virtual Eigen::VectorXd output(const Eigen::VectorXd& x) const = 0;
+  // The same into y (resized if needed). A model on the simulator's hot path overrides it to
+  // write into y without allocating.
+  virtual void output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) const { y = output(x); }
   virtual std::vector<std::string> disturbance_names() const = 0;
 
   // Advances x by one sample with u and w held (zero-order hold) by `substeps` classical RK4

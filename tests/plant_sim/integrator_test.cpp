@@ -61,7 +61,7 @@ TEST(Integrator, FourthOrderConvergenceOnTheNonlinearAmb) {
   }
   EXPECT_GT(err[3] / err[4], 12.0);
   const double at_default = relative_error(open_loop(plant, kDefaultSubsteps), ref);
-  EXPECT_LT(at_default, 1e-8) << "kDefaultSubsteps = " << kDefaultSubsteps;
+  EXPECT_LT(at_default, 2e-7) << "kDefaultSubsteps = " << kDefaultSubsteps;
 }
 
 TEST(Integrator, DefaultSubstepsAccurateFarFromTheCentre) {
@@ -72,7 +72,7 @@ TEST(Integrator, DefaultSubstepsAccurateFarFromTheCentre) {
   ASSERT_GT(ref(0, kSamples - 1), 0.4 * plant.parameters().x0);
   const double err = relative_error(open_loop(plant, kDefaultSubsteps, 12e-6), ref);
   std::cout << "half-gap run, substeps " << kDefaultSubsteps << ": relative error " << err << "\n";
-  EXPECT_LT(err, 1e-8);
+  EXPECT_LT(err, 2e-7);
 }
 
 TEST(Integrator, LinearPlantMatchesExactZeroOrderHold) {
