@@ -5,5 +5,6 @@
 namespace ambid::cli {
 
 void add_sim_command(CLI::App& app);
+void add_audit_command(CLI::App& app);
 
 }  // namespace ambid::cli

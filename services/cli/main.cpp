@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ambid: closed-loop identification and diagnostics of magnetic bearings"};
   app.require_subcommand(1);
   ambid::cli::add_sim_command(app);
+  ambid::cli::add_audit_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
