@@ -120,6 +120,13 @@ Amb1dofExtended::Continuous Amb1dofExtended::continuous_derivative(const Continu
         const double gap = j == 0 ? p.x0 - core[0] : p.x0 + core[0];
         const double flux = force_state[2 + j] / (gap * flux0_);
         force_state[2 + j] /= std::sqrt(1.0 + saturation_beta_ * flux * flux);
+        // The air-gap flux linkage K/2 phi(a) falls with it: the coil equation of the nominal
+        // model with K/2 scaled by phi'(a) = (1 + beta (a/a0)^2)^(-3/2).
+        const double a = core[2 + j] / gap, slope = std::pow(1.0 + saturation_beta_ * (a / flux0_) * (a / flux0_), -1.5);
+        const double K = (j == 0 ? p.K1 : p.K2) * slope, sign = j == 0 ? -1.0 : 1.0;
+        d[2 + j] = ((j == 0 ? p.kw1 : p.kw2) * u_coil[j] - (j == 0 ? p.R1 : p.R2) * core[2 + j] +
+                    sign * 0.5 * K * a * core[1] / gap) /
+                   ((j == 0 ? p.Ls1 : p.Ls2) + 0.5 * K / gap);
       }
     }
     d[1] = base_.derivative(force_state, u_coil, force)[1];

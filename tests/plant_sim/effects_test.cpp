@@ -228,6 +228,13 @@ TEST(Effects, SaturationFlattensTheForceLaw) {
   auto force = [&](double a) { return p.K1 / 4 * a * a / (1 + beta * (a / a0) * (a / a0)); };
   for (double k : {0.5, 1.5, 3.0})
     EXPECT_NEAR(acceleration(plant, {{2, k * p.i0}}) * p.m, force(k * a0) - force(a0), 1e-9) << k;
+  // The coil sees the incremental air-gap inductance K/2 phi'(a) / gap, phi'(a) = (1 + beta (a/a0)^2)^(-3/2).
+  Eigen::VectorXd x = plant.equilibrium_state();
+  x[2] = 1.5 * p.i0;
+  const Eigen::VectorXd u = plant.equilibrium_input();
+  const double slope = std::pow(1 + beta * 2.25, -1.5);
+  EXPECT_NEAR(plant.derivative(x, u, Eigen::VectorXd::Zero(1))[2],
+              (p.kw1 * u[0] - p.R1 * x[2]) / (p.Ls1 + 0.5 * p.K1 * slope / p.x0), 1e-9);
   // Far above the operating flux the force of a coil approaches K a0^2 / (4 beta).
   EXPECT_LT(acceleration(plant, {{2, 50 * p.i0}}) * p.m + force(a0), p.K1 * a0 * a0 / (4 * beta));
   EXPECT_GT(acceleration(plant, {{2, 50 * p.i0}}) * p.m + force(a0), 0.99 * p.K1 * a0 * a0 / (4 * beta));
