@@ -18,10 +18,9 @@ double total(const Eigen::VectorXd& per_output) { return per_output.mean(); }
 
 // The strongest line over the outputs' residuals, each normalised by its measured spread.
 Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measured, double dt, double f_lo,
-                   double f_hi, Eigen::Index only_output = -1) {
+                   double f_hi) {
   Line best;
   for (Eigen::Index j = 0; j < residual.cols(); ++j) {
-    if (only_output >= 0 && j != only_output) continue;
     const double spread = (measured.col(j).array() - measured.col(j).mean()).matrix().norm();
     const Line l = strongest_line(residual.col(j) / spread, dt, f_lo, f_hi);
     if (l.amplitude > best.amplitude) best = l;
@@ -31,14 +30,15 @@ Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measu
 
 // Starting values of every candidate: switching parameters at +-1 and +-0.3 times their scale
 // (within range),
-// frequencies from the residual's strongest line.
-std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f, double mode_f) {
-  std::map<std::string, double> shape;
-  if (spec.name == "harmonic_disturbance") shape["f"] = harmonic_f;
-  if (spec.name == "flexible_mode") shape["f"] = mode_f;
-  if (channel) shape["channel"] = channel;
+// frequencies from the residual's strongest line (harmonic) or peaks (flexible mode).
+std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f,
+                                   const std::vector<double>& mode_f) {
   std::vector<sim::Effect> starts;
+  for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
   for (const auto& p : spec.parameters) {
+    std::map<std::string, double> shape;
+    if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
+    if (channel) shape["channel"] = channel;
     if (!p.switches) continue;
     for (double size : {1.0, -1.0, 0.3, -0.3}) {
       if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
@@ -98,7 +98,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
   const double nyquist = 0.5 / dt;
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
-  const double mode_f = residual_line(est_residual, est_measured, dt, 100.0, 0.9 * nyquist, 0).frequency;
+  // A mode shows as a resonance in the position residual: try its three strongest peaks.
+  const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
   std::vector<Candidate> candidates;
   for (const auto& spec : sim::effect_catalogue()) {
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {

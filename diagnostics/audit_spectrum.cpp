@@ -1,5 +1,6 @@
 #include "diagnostics/audit_spectrum.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 #include <numbers>
@@ -68,6 +69,22 @@ Line strongest_line(const Eigen::VectorXd& signal, double sample_time, double f_
     if (m > m_best) m_best = m, f_best = f;
   }
   return {f_best, 2.0 * m_best / double(signal.size())};
+}
+
+std::vector<double> spectral_peaks(const Eigen::VectorXd& signal, double sample_time, double f_lo, double f_hi,
+                                   int count) {
+  const Spectrum s = welch_spectrum(signal, sample_time, std::min<Eigen::Index>(512, signal.size()));
+  std::vector<Eigen::Index> maxima;
+  const Eigen::VectorXd p = s.power.col(0);
+  for (Eigen::Index b = 1; b + 1 < p.size(); ++b)
+    if (s.frequency[b] >= f_lo && s.frequency[b] <= f_hi && p[b] >= p[b - 1] && p[b] >= p[b + 1]) maxima.push_back(b);
+  std::sort(maxima.begin(), maxima.end(), [&](Eigen::Index a, Eigen::Index b) { return p[a] > p[b]; });
+  std::vector<double> peaks;
+  const double bin = s.frequency[1];
+  for (std::size_t i = 0; i < maxima.size() && int(i) < count; ++i)
+    peaks.push_back(strongest_line(signal, sample_time, s.frequency[maxima[i]] - bin, s.frequency[maxima[i]] + bin).frequency);
+  if (peaks.empty()) peaks.push_back(0.5 * (f_lo + f_hi));
+  return peaks;
 }
 
 double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation, Eigen::Index max_lag) {

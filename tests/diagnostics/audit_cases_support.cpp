@@ -21,9 +21,11 @@ sim::Effect draw_effect(const std::string& name, std::uint64_t seed) {
   if (name == "sensor_delay") v["delay"] = uniform(4e-5, 1e-4);
   if (name == "sensor_gain") v["dgain"] = sign * uniform(0.05, 0.15);
   if (name == "flexible_mode") {
-    v["coupling"] = uniform(0.05, 0.15);
-    v["f"] = uniform(250.0, 600.0);
-    v["zeta"] = uniform(0.005, 0.02);
+    // The resonance gain coupling / (2 zeta) decides what the sensor sees: from 2.5 (clearly
+    // above the noise) to 5 (beyond that the recorded controller goes unstable by spillover).
+    v["zeta"] = uniform(0.01, 0.02);
+    v["coupling"] = 2 * v["zeta"] * uniform(2.5, 5.0);
+    v["f"] = uniform(250.0, 450.0);
   }
   if (name == "magnetic_saturation") v["beta"] = uniform(0.2, 0.5);
   if (name == "air_gap") v["dx0"] = sign * uniform(2e-5, 5e-5);
