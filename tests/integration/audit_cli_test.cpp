@@ -50,6 +50,13 @@ nlohmann::json read_json(const fs::path& path) {
   return nlohmann::json::parse(in);
 }
 
+// The command fails with exit code 1 and a message containing `message`.
+void expect_failure(const std::string& args, const std::string& message) {
+  const CommandResult r = run_ambid(args);
+  EXPECT_EQ(r.status, 1) << args;
+  EXPECT_THAT(r.output, HasSubstr(message)) << args;
+}
+
 const std::string kNoisy = " --duration 0.5 --amplitude 0.3 --position-noise 2e-9 --current-noise 2e-5 --seed 21";
 
 TEST(SimEffectCli, EffectsChangeTheTruthNotTheSidecar) {
@@ -72,18 +79,10 @@ TEST(SimEffectCli, EffectsChangeTheTruthNotTheSidecar) {
 TEST(SimEffectCli, UnknownEffectsAndParametersListTheValidOnes) {
   const fs::path dir = fresh_dir("sim_effect_bad");
   const std::string out = " --duration 0.1 --out " + (dir / "x").string();
-  CommandResult r = run_ambid("sim --effect eddy" + out);
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("unknown effect 'eddy' (known: coil_resistance, amplifier_gain"));
-  r = run_ambid("sim --effect sensor_delay --set tau=1e-4" + out);
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("valid: m x0 i0 R1 R2 Ls1 Ls2 K1 K2 kw1 kw2 delay"));
-  r = run_ambid("sim --effect sensor_delay --set delay=-1" + out);
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("outside"));
-  r = run_ambid("sim --effect amplifier_bandwidth --effect eddy_current --set tau=1e-4" + out);
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("EFFECT.tau"));
+  expect_failure("sim --effect eddy" + out, "unknown effect 'eddy' (known: coil_resistance, amplifier_gain");
+  expect_failure("sim --effect sensor_delay --set tau=1e-4" + out, "valid: m x0 i0 R1 R2 Ls1 Ls2 K1 K2 kw1 kw2 delay");
+  expect_failure("sim --effect sensor_delay --set delay=-1" + out, "outside");
+  expect_failure("sim --effect amplifier_bandwidth --effect eddy_current --set tau=1e-4" + out, "EFFECT.tau");
   EXPECT_FALSE(fs::exists(dir / "x.csv"));
 }
 
@@ -109,13 +108,9 @@ TEST(AuditCli, NamesTheHiddenEffectAndWritesItsFiles) {
 
 TEST(AuditCli, RefusesWhatItCannotAudit) {
   const fs::path dir = fresh_dir("audit_bad");
-  CommandResult r = run_ambid("audit " + (dir / "missing.json").string() + " --out " + (dir / "a").string());
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("missing"));
+  expect_failure("audit " + (dir / "missing.json").string() + " --out " + (dir / "a").string(), "missing");
   ASSERT_EQ(run_ambid("sim --duration 0.1 --excitation none --out " + (dir / "quiet").string()).status, 0);
-  r = run_ambid("audit " + (dir / "quiet.json").string() + " --out " + (dir / "a").string());
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("no excitation"));
+  expect_failure("audit " + (dir / "quiet.json").string() + " --out " + (dir / "a").string(), "no excitation");
   EXPECT_FALSE(fs::exists(dir / "a" / "audit.json"));
 }
 
