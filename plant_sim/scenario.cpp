@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/excitation.hpp"
 #include "plant_sim/observer_controller.hpp"
@@ -105,7 +106,10 @@ Scenario build_scenario(const ScenarioOptions& o) {
   const Amb1dofVoltage nominal_plant(nominal);
 
   Scenario s;
-  s.truth = std::make_unique<Amb1dofVoltage>(true_parameters);
+  if (o.effects.empty())
+    s.truth = std::make_unique<Amb1dofVoltage>(true_parameters);
+  else
+    s.truth = std::make_unique<Amb1dofExtended>(true_parameters, o.effects, o.sample_time);
   Experiment& h = s.header;
   h.name = o.name;
   h.sample_time = o.sample_time;
@@ -132,6 +136,9 @@ Scenario build_scenario(const ScenarioOptions& o) {
                                {"controller_design", o.controller},
                                {"noise", {{"x", o.position_noise}, {"i1", o.current_noise}, {"i2", o.current_noise},
                                           {"Fz", o.force_noise}}}};
+  for (const auto& e : o.effects)
+    simulation["effects"].push_back({{"effect", e.name}, {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json()},
+                                     {"parameters", e.parameters}});
   if (o.excitation != "none" && o.amplitude > 0) {
     h.r_names = {"r1", "r2"};
     h.operating_point["r1"] = 0.0;

@@ -10,6 +10,7 @@
 
 #include "core/experiment.hpp"
 #include "plant_sim/closed_loop.hpp"
+#include "plant_sim/effects.hpp"
 #include "plant_sim/plant.hpp"
 
 namespace ambid::sim {
@@ -18,6 +19,7 @@ struct ScenarioOptions {
   std::string name = "simulation";
   std::string plant = "amb1dof_voltage";
   std::map<std::string, double> true_parameters;  // overrides of the truth; the sidecar keeps nominal
+  std::vector<Effect> effects;                    // effects of the truth (effects.hpp); the sidecar stays nominal
   std::string controller = "lqr";                 // lqr (observer + integral action) | pid
   std::string excitation = "prbs";                // prbs | multisine | chirp | stepped_sine | none
   double amplitude = 0.05;                        // excitation level at each plant input (V); rms for multisine

@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
   iproute2 procps libxml2-utils
+  chromium  # headless rendering test of the HTML audit report
 )
 
 missing=()

@@ -8,5 +8,6 @@ void add_sim_command(CLI::App& app);
 void add_diagnose_command(CLI::App& app);
 void add_identify_command(CLI::App& app);
 void add_frf_command(CLI::App& app);
+void add_audit_command(CLI::App& app);
 
 }  // namespace ambid::cli

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   ambid::cli::add_diagnose_command(app);
   ambid::cli::add_identify_command(app);
   ambid::cli::add_frf_command(app);
+  ambid::cli::add_audit_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,10 +1,12 @@
 // `ambid sim`: simulate a plant in closed loop and write an experiment (csv + json).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <memory>
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/cli/commands.hpp"
 #include "services/cli/parameter_overrides.hpp"
@@ -15,6 +17,7 @@ namespace {
 struct SimArguments {
   sim::ScenarioOptions scenario;
   std::vector<std::string> overrides;
+  std::vector<std::string> effects;
   std::string out;
 };
 
@@ -32,6 +35,54 @@ void print_summary(const Experiment& e, const std::string& stem, const sim::Clos
   if (stats.saturated_samples > 0)
     std::cout << "  amplifier limit reached in " << stats.saturated_samples << " samples\n";
   std::cout << "  wrote " << stem << ".csv and " << stem << ".json\n";
+}
+
+bool has_parameter(const sim::EffectSpec& spec, const std::string& name) {
+  if (spec.has_channel && name == "channel") return true;
+  for (const auto& p : spec.parameters)
+    if (p.name == name) return true;
+  return false;
+}
+
+// Splits the --set values between the true plant parameters and the effects: `EFFECT.PARAM`,
+// or `PARAM` when exactly one chosen effect has it; anything else must be a plant parameter.
+void route_overrides(const std::map<std::string, double>& values, const std::vector<std::string>& effect_names,
+                     sim::ScenarioOptions& o) {
+  std::map<std::string, std::map<std::string, double>> per_effect;
+  for (const auto& name : effect_names) {
+    sim::effect_spec(name);  // Error listing the known effects
+    if (!per_effect.emplace(name, std::map<std::string, double>{}).second)
+      throw Error("--effect " + name + " given twice");
+  }
+  const auto& plant_names = sim::Amb1dofParameters::names();
+  for (const auto& [key, value] : values) {
+    const auto dot = key.find('.');
+    if (dot != std::string::npos) {
+      const std::string effect = key.substr(0, dot);
+      if (!per_effect.count(effect)) throw Error("--set " + key + ": effect '" + effect + "' is not chosen with --effect");
+      per_effect[effect][key.substr(dot + 1)] = value;
+      continue;
+    }
+    std::vector<std::string> owners;
+    for (const auto& name : effect_names)
+      if (has_parameter(sim::effect_spec(name), key)) owners.push_back(name);
+    if (owners.size() > 1) throw Error("--set " + key + ": several chosen effects have it; write EFFECT." + key);
+    if (owners.size() == 1) {
+      per_effect[owners.front()][key] = value;
+    } else if (std::find(plant_names.begin(), plant_names.end(), key) != plant_names.end() || effect_names.empty()) {
+      o.true_parameters[key] = value;  // an unknown name without effects: the plant lists its names
+    } else {
+      std::string valid;
+      for (const auto& name : plant_names) valid += name + " ";
+      for (const auto& name : effect_names) {
+        for (const auto& p : sim::effect_spec(name).parameters) valid += p.name + " ";
+        if (sim::effect_spec(name).has_channel) valid += "channel ";
+      }
+      throw Error("--set " + key + ": neither a plant parameter nor a parameter of the chosen effects (valid: " +
+                  valid.substr(0, valid.size() - 1) + ")");
+    }
+  }
+  for (const auto& name : effect_names) o.effects.push_back(sim::make_effect(name, per_effect[name]));
 }
 
 }  // namespace
@@ -58,11 +109,16 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--input-limit", o.input_limit, "amplifier command limit |u| (V), 0 for none")
       ->capture_default_str();
   sim->add_option("--set", args->overrides,
-                  "NAME=VALUE: a true plant parameter (repeatable); the sidecar keeps the nominal value");
+                  "NAME=VALUE: a true plant parameter or an effect parameter (repeatable; EFFECT.NAME=VALUE when "
+                  "two effects share a name); the sidecar keeps the nominal value");
+  sim->add_option("--effect", args->effects,
+                  "an effect of the truth (repeatable; see plant_sim/EFFECTS.md): coil_resistance, amplifier_gain, "
+                  "amplifier_bandwidth, eddy_current, sensor_delay, sensor_gain, flexible_mode, magnetic_saturation, "
+                  "air_gap, rotor_mass, harmonic_disturbance");
   sim->add_option("--out", args->out, "output stem: writes STEM.csv and STEM.json")->required();
   sim->add_option("--name", o.name, "experiment name")->capture_default_str();
   sim->callback([args] {
-    args->scenario.true_parameters = parse_parameter_overrides(args->overrides);
+    route_overrides(parse_parameter_overrides(args->overrides), args->effects, args->scenario);
     sim::ClosedLoopStatistics stats;
     const Experiment e = sim::simulate_scenario(args->scenario, &stats);
     write_experiment(e, args->out);

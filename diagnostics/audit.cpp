@@ -1,0 +1,192 @@
+#include "diagnostics/audit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace ambid::diagnostics {
+namespace {
+
+struct Candidate {
+  sim::Effect start;
+  double cost = 0.0;  // estimation cost at the start
+};
+
+double total(const Eigen::VectorXd& per_output) { return per_output.mean(); }
+
+// The strongest line over the outputs' residuals, each normalised by its measured spread.
+Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measured, double dt, double f_lo,
+                   double f_hi) {
+  Line best;
+  for (Eigen::Index j = 0; j < residual.cols(); ++j) {
+    const double spread = (measured.col(j).array() - measured.col(j).mean()).matrix().norm();
+    const Line l = strongest_line(residual.col(j) / spread, dt, f_lo, f_hi);
+    if (l.amplitude > best.amplitude) best = l;
+  }
+  return best;
+}
+
+// Starting values of every candidate: switching parameters at +-1 and +-0.3 times their scale
+// (within range),
+// frequencies from the residual's strongest line (harmonic) or peaks (flexible mode).
+std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f,
+                                   const std::vector<double>& mode_f) {
+  std::vector<sim::Effect> starts;
+  for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
+  for (const auto& p : spec.parameters) {
+    std::map<std::string, double> shape;
+    if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
+    if (channel) shape["channel"] = channel;
+    if (!p.switches) continue;
+    for (double size : {1.0, -1.0, 0.3, -0.3}) {
+      if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
+      auto values = shape;
+      values[p.name] = size * p.scale;
+      starts.push_back(sim::make_effect(spec.name, values));
+    }
+  }
+  return starts;
+}
+
+std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::VectorXd& correlation) {
+  std::ostringstream s;
+  s.precision(3);
+  s << sim::effect_spec(f.effect.name).summary << ";";
+  for (std::size_t j = 0; j < r.outputs.size(); ++j)
+    s << " " << r.outputs[j] << " NRMSE " << r.baseline_nrmse[Eigen::Index(j)] << " -> "
+      << f.nrmse_after[Eigen::Index(j)];
+  if (f.effect.name == "harmonic_disturbance" || f.effect.name == "flexible_mode")
+    s << "; residual line at " << f.effect.at("f") << " Hz";
+  s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
+  return s.str();
+}
+
+}  // namespace
+
+AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
+  require_auditable(measured);
+  if (!(options.estimation_fraction > 0.1 && options.estimation_fraction < 0.9))
+    throw Error("audit: estimation_fraction must be in (0.1, 0.9), got " + std::to_string(options.estimation_fraction));
+  const double dt = measured.sample_time;
+  const Eigen::Index N = measured.samples();
+  AuditResult r;
+  r.outputs = measured.y_names;
+  r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
+  r.validation = {r.estimation.end, N};
+  r.t = measured.t;
+  r.measured = measured.y_deviation();
+  try {
+    r.nominal = replay_outputs(measured, {}, N);
+  } catch (const InsufficientData&) {
+    throw;
+  } catch (const Error& e) {
+    throw Error(std::string("audit: the nominal model cannot be replayed: ") + e.what());
+  }
+  r.baseline_nrmse = nrmse(r.measured, r.nominal, r.validation);
+  r.baseline_total = total(r.baseline_nrmse);
+  const Eigen::MatrixXd residual = r.measured - r.nominal;
+  const Eigen::MatrixXd r_dev = measured.r_deviation();
+  r.excitation_correlation.resize(residual.cols(), r_dev.cols());
+  for (Eigen::Index j = 0; j < residual.cols(); ++j)
+    for (Eigen::Index i = 0; i < r_dev.cols(); ++i)
+      r.excitation_correlation(j, i) = excitation_correlation(residual.col(j), r_dev.col(i), 50);
+
+  // Screening.
+  const Eigen::MatrixXd est_residual = residual.topRows(r.estimation.end);
+  const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
+  const double nyquist = 0.5 / dt;
+  const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
+  // A mode shows as a resonance in the position residual: try its three strongest peaks.
+  const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
+  std::vector<Candidate> candidates;
+  for (const auto& spec : sim::effect_catalogue()) {
+    for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
+      Candidate best{{}, INFINITY};
+      for (const auto& start : starts_of(spec, channel, harmonic_f, mode_f)) {
+        const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
+        if (c < best.cost || best.start.name.empty()) best = {start, c};
+      }
+      candidates.push_back(best);
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+
+  // Fit the most promising candidates, score them on the validation segment.
+  const int fitted = std::min<int>(options.fitted_candidates, int(candidates.size()));
+  for (int c = 0; c < fitted; ++c) {
+    if (!std::isfinite(candidates[std::size_t(c)].cost)) continue;
+    const EffectFit fit = fit_effect(measured, r.measured, candidates[std::size_t(c)].start, r.estimation, options.fit);
+    AuditFinding f;
+    f.effect = fit.effect;
+    f.nrmse_total_before = r.baseline_total;
+    try {
+      f.nrmse_after = nrmse(r.measured, replay_outputs(measured, {fit.effect}, N), r.validation);
+    } catch (const InsufficientData&) {
+      throw;
+    } catch (const Error&) {
+      continue;  // fitted on one part, it cannot even be simulated over the whole record
+    }
+    f.nrmse_total_after = total(f.nrmse_after);
+    f.score = f.nrmse_total_after * (1.0 + options.complexity_penalty * double(fit.effect.parameters.size()));
+    r.findings.push_back(std::move(f));
+  }
+  std::stable_sort(r.findings.begin(), r.findings.end(),
+                   [](const AuditFinding& a, const AuditFinding& b) { return a.score < b.score; });
+  for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
+  if (!r.findings.empty() && r.findings.front().score < (1.0 - options.min_gain) * r.baseline_total) {
+    r.findings.front().accepted = true;
+    r.cause = r.findings.front().effect.name;
+    r.extended_effects = {r.findings.front().effect};
+  }
+  r.extended = r.extended_effects.empty() ? r.nominal : replay_outputs(measured, r.extended_effects, N);
+  const Eigen::Index L = std::min<Eigen::Index>(512, r.validation.size());
+  r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);
+  r.residual_extended =
+      welch_spectrum((r.measured - r.extended).middleRows(r.validation.begin, r.validation.size()), dt, L);
+  return r;
+}
+
+nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_file,
+                          const std::string& extended_model_file) {
+  auto per_output = [&](const Eigen::VectorXd& v) {
+    nlohmann::json j = nlohmann::json::object();
+    for (std::size_t i = 0; i < r.outputs.size(); ++i) j[r.outputs[i]] = v[Eigen::Index(i)];
+    return j;
+  };
+  nlohmann::json findings = nlohmann::json::array();
+  for (const auto& f : r.findings)
+    findings.push_back({{"effect", f.effect.name},
+                        {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
+                        {"parameters", f.effect.parameters},
+                        {"nrmse_total_before", f.nrmse_total_before},
+                        {"nrmse_total_after", f.nrmse_total_after},
+                        {"evidence", f.evidence}});
+  return {{"format", "ambid-audit/1"},
+          {"experiment", experiment_file},
+          {"baseline", {{"nrmse", per_output(r.baseline_nrmse)}, {"nrmse_total", r.baseline_total}}},
+          {"cause", r.cause},
+          {"findings", findings},
+          {"extended_model", extended_model_file}};
+}
+
+nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& r) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& e : r.extended_effects)
+    effects.push_back({{"effect", e.name},
+                       {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json(nullptr)},
+                       {"parameters", e.parameters}});
+  const Eigen::VectorXd fit = nrmse(r.measured, r.extended, r.validation);
+  nlohmann::json per_output = nlohmann::json::object();
+  for (std::size_t i = 0; i < r.outputs.size(); ++i) per_output[r.outputs[i]] = fit[Eigen::Index(i)];
+  return {{"format", "ambid-extended-model/1"},
+          {"plant_model", measured.plant.model},
+          {"sample_time", measured.sample_time},
+          {"parameters", measured.plant.parameters},
+          {"effects", effects},
+          {"fit", {{"segment", "validation"}, {"nrmse", per_output}}}};
+}
+
+}  // namespace ambid::diagnostics

@@ -1,0 +1,36 @@
+#pragma once
+// The audit's view of a model: simulated in closed loop with the recorded controller and
+// driven by the recorded excitation r (experiment-format.md, audit report), compared with the
+// measurement by the contract's NRMSE.
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/experiment.hpp"
+#include "plant_sim/effects.hpp"
+
+namespace ambid::diagnostics {
+
+// Samples [begin, end) of a record.
+struct Segment {
+  Eigen::Index begin = 0, end = 0;
+  Eigen::Index size() const { return end - begin; }
+};
+
+// The nominal amb1dof_voltage of the sidecar with `effects`, replayed for the first `samples`
+// samples; outputs as deviations from the operating point (samples x outputs). Error when the
+// experiment has no controller or no excitation, is not amb1dof_voltage, or the model leaves
+// its valid region (e.g. the rotor touches the bearing).
+Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                               Eigen::Index samples);
+
+// Per output j: ||y_meas - y_model|| / ||y_meas - mean(y_meas)|| over `segment`; both
+// matrices as deviations, at least `segment.end` rows. Error for a constant measured output.
+Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment);
+
+// Checks what the audit needs of an experiment (Error naming what is missing).
+void require_auditable(const Experiment& measured);
+
+}  // namespace ambid::diagnostics

@@ -1,0 +1,62 @@
+// `ambid audit EXPERIMENT.json --out DIR`: where the nominal simulation of a measured machine
+// is wrong, which effect explains it, and the gain of the extended model (diagnostics/audit.hpp).
+// Writes DIR/audit.json, DIR/model-extended.json and DIR/report.html.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "core/experiment_io.hpp"
+#include "diagnostics/audit.hpp"
+#include "services/cli/audit_report.hpp"
+#include "services/cli/commands.hpp"
+#include "services/report/atomic_file.hpp"
+
+namespace ambid::cli {
+namespace {
+
+struct AuditArguments {
+  std::string experiment;
+  std::string out;
+  diagnostics::AuditOptions options;
+};
+
+}  // namespace
+
+void add_audit_command(CLI::App& app) {
+  auto args = std::make_shared<AuditArguments>();
+  CLI::App* audit = app.add_subcommand(
+      "audit", "compare the nominal model with a measured experiment, name the missing effect, fit it");
+  audit->add_option("experiment", args->experiment, "experiment (.json sidecar, .csv or stem)")->required();
+  audit->add_option("--out", args->out, "output directory: audit.json, model-extended.json, report.html")
+      ->required();
+  audit->add_option("--estimation-fraction", args->options.estimation_fraction,
+                    "leading part of the record used for fitting; the rest validates")
+      ->capture_default_str();
+  audit->add_option("--min-gain", args->options.min_gain,
+                    "relative NRMSE reduction an effect needs to be named the cause")
+      ->capture_default_str();
+  audit->add_option("--fitted-candidates", args->options.fitted_candidates,
+                    "how many of the screened candidates are fitted")
+      ->capture_default_str();
+  audit->callback([args] {
+    const ReadResult read = read_experiment(args->experiment);
+    for (const auto& w : read.warnings) std::cerr << "ambid audit: warning: " << w << "\n";
+    const diagnostics::AuditResult result = diagnostics::run_audit(read.experiment, args->options);
+    const std::filesystem::path dir(args->out);
+    const std::string experiment_file = std::filesystem::path(args->experiment).filename().string();
+    report::write_file_atomically(dir / "audit.json",
+                                  diagnostics::audit_json(result, experiment_file, "model-extended.json").dump(2) + "\n");
+    report::write_file_atomically(dir / "model-extended.json",
+                                  diagnostics::extended_model_json(read.experiment, result).dump(2) + "\n");
+    report::write_file_atomically(dir / "report.html", audit_report_html(result, experiment_file));
+    std::cout << "ambid audit: " << audit_verdict(result) << "\n";
+    std::cout.precision(4);
+    for (const auto& f : result.findings)
+      std::cout << "  " << f.effect.name << (f.effect.channel ? " channel " + std::to_string(f.effect.channel) : "")
+                << ": NRMSE " << f.nrmse_total_before << " -> " << f.nrmse_total_after
+                << (f.accepted ? "  (cause)" : "") << "\n";
+    std::cout << "  wrote " << (dir / "audit.json").string() << ", model-extended.json and report.html\n";
+  });
+}
+
+}  // namespace ambid::cli

@@ -1,0 +1,126 @@
+#include "services/cli/audit_report.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "services/report/figure.hpp"
+#include "services/report/svg.hpp"
+#include "services/report/xml_escape.hpp"
+
+namespace ambid::cli {
+namespace {
+
+// The SVG element without the XML declaration, to sit inside the HTML page.
+std::string inline_svg(const report::Figure& figure) {
+  const std::string svg = report::render_svg(figure);
+  return svg.substr(svg.find("<svg"));
+}
+
+std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+
+// At most ~2000 points per trace: every k-th sample of the validation segment's first 0.2 s.
+report::Figure time_traces(const diagnostics::AuditResult& r) {
+  report::Figure fig;
+  fig.title = "Validation segment: measured and replayed outputs (deviations)";
+  fig.height = 250.0 * double(r.outputs.size());
+  fig.share_x = true;
+  const Eigen::Index begin = r.validation.begin;
+  const Eigen::Index n = std::min<Eigen::Index>(r.validation.size(), 2000);
+  for (std::size_t j = 0; j < r.outputs.size(); ++j) {
+    const auto col = Eigen::Index(j);
+    report::Axes ax;
+    ax.y_label = r.outputs[j];
+    ax.x_label = j + 1 == r.outputs.size() ? "t [s]" : "";
+    const std::vector<double> t = to_vector(r.t.segment(begin, n));
+    ax.series = {report::line("measured", t, to_vector(r.measured.col(col).segment(begin, n))),
+                 report::line("nominal model", t, to_vector(r.nominal.col(col).segment(begin, n)))};
+    if (!r.extended_effects.empty())
+      ax.series.push_back(report::line("extended model", t, to_vector(r.extended.col(col).segment(begin, n))));
+    ax.series[1].style.dash = "6 3";
+    fig.axes.push_back(ax);
+  }
+  return fig;
+}
+
+report::Figure residual_spectra(const diagnostics::AuditResult& r) {
+  report::Figure fig;
+  fig.title = "Residual spectra (measured minus model), validation segment";
+  fig.height = 250.0 * double(r.outputs.size());
+  fig.share_x = true;
+  const Eigen::Index bins = r.residual_nominal.frequency.size();
+  const std::vector<double> f = to_vector(r.residual_nominal.frequency.tail(bins - 1));
+  for (std::size_t j = 0; j < r.outputs.size(); ++j) {
+    const auto col = Eigen::Index(j);
+    report::Axes ax;
+    ax.log_x = ax.log_y = true;
+    ax.y_label = "PSD " + r.outputs[j];
+    ax.x_label = j + 1 == r.outputs.size() ? "f [Hz]" : "";
+    ax.series = {report::line("nominal residual", f, to_vector(r.residual_nominal.power.col(col).tail(bins - 1)))};
+    if (!r.extended_effects.empty())
+      ax.series.push_back(
+          report::line("extended residual", f, to_vector(r.residual_extended.power.col(col).tail(bins - 1))));
+    fig.axes.push_back(ax);
+  }
+  return fig;
+}
+
+}  // namespace
+
+std::string audit_verdict(const diagnostics::AuditResult& r) {
+  std::ostringstream s;
+  s.precision(3);
+  if (r.cause == "none") {
+    s << "The nominal model explains this record as well as any single effect of the catalogue: no extension "
+         "reduces the validation error (NRMSE "
+      << r.baseline_total << ") by more than fitting noise does. Cause: none.";
+    return s.str();
+  }
+  const auto& f = r.findings.front();
+  s << "The simulation misses " << f.effect.name;
+  if (f.effect.channel) s << " on channel " << f.effect.channel;
+  s << " (" << sim::effect_spec(f.effect.name).summary << "). With it fitted (";
+  bool first = true;
+  for (const auto& p : sim::effect_spec(f.effect.name).parameters) {
+    s << (first ? "" : ", ") << p.name << " = " << f.effect.at(p.name) << " " << p.unit;
+    first = false;
+  }
+  s << "), the error on data the fit did not see falls from NRMSE " << f.nrmse_total_before << " to "
+    << f.nrmse_total_after << ".";
+  return s.str();
+}
+
+std::string audit_report_html(const diagnostics::AuditResult& r, const std::string& experiment_name) {
+  using report::xml_escape;
+  std::ostringstream h;
+  h.precision(4);
+  h << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>ambid audit: "
+    << xml_escape(experiment_name) << "</title>\n<style>body{font-family:sans-serif;margin:2em;max-width:70em}"
+    << "table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:0.3em 0.6em;text-align:left}"
+    << ".verdict{font-size:1.2em;background:#eef;padding:1em}</style></head><body>\n";
+  h << "<h1>Model audit: " << xml_escape(experiment_name) << "</h1>\n";
+  h << "<p class=\"verdict\">" << xml_escape(audit_verdict(r)) << "</p>\n";
+  h << "<p>Estimation samples " << r.estimation.begin << "&ndash;" << r.estimation.end << ", validation samples "
+    << r.validation.begin << "&ndash;" << r.validation.end << ". NRMSE = ||y_meas - y_model|| / ||y_meas - mean||"
+    << " on the validation segment, the model replayed in closed loop with the recorded controller and r.</p>\n";
+  h << "<h2>Nominal model</h2>\n<table><tr><th>output</th><th>NRMSE</th><th>max |corr(residual, r)|</th></tr>\n";
+  for (std::size_t j = 0; j < r.outputs.size(); ++j)
+    h << "<tr><td>" << xml_escape(r.outputs[j]) << "</td><td>" << r.baseline_nrmse[Eigen::Index(j)] << "</td><td>"
+      << r.excitation_correlation.row(Eigen::Index(j)).maxCoeff() << "</td></tr>\n";
+  h << "<tr><td>total (mean)</td><td>" << r.baseline_total << "</td><td></td></tr></table>\n";
+  h << "<h2>Candidate extensions (fitted, best first)</h2>\n<table><tr><th>effect</th><th>channel</th>"
+    << "<th>parameters</th><th>NRMSE after</th><th>accepted</th><th>evidence</th></tr>\n";
+  for (const auto& f : r.findings) {
+    h << "<tr><td>" << f.effect.name << "</td><td>" << (f.effect.channel ? std::to_string(f.effect.channel) : "&ndash;")
+      << "</td><td>";
+    for (const auto& p : sim::effect_spec(f.effect.name).parameters)
+      h << xml_escape(p.name) << " = " << f.effect.at(p.name) << " " << xml_escape(p.unit) << "<br>";
+    h << "</td><td>" << f.nrmse_total_after << "</td><td>" << (f.accepted ? "yes" : "no") << "</td><td>"
+      << xml_escape(f.evidence) << "</td></tr>\n";
+  }
+  h << "</table>\n<h2>Time traces</h2>\n" << inline_svg(time_traces(r));
+  h << "\n<h2>Residual spectra</h2>\n" << inline_svg(residual_spectra(r));
+  h << "\n</body></html>\n";
+  return h.str();
+}
+
+}  // namespace ambid::cli
