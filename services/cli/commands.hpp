@@ -5,5 +5,7 @@
 namespace ambid::cli {
 
 void add_sim_command(CLI::App& app);
+void add_daemon_commands(CLI::App& app);  // services/daemons/daemon_commands.cpp
+void add_operator_commands(CLI::App& app);  // alerts, source, status, record
 
 }  // namespace ambid::cli

@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   CLI::App app{"ambid: closed-loop identification and diagnostics of magnetic bearings"};
   app.require_subcommand(1);
   ambid::cli::add_sim_command(app);
+  ambid::cli::add_daemon_commands(app);
+  ambid::cli::add_operator_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -49,8 +49,10 @@ bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::I
   return b;
 }
 
-SampleWindow::SampleWindow(Experiment header, Eigen::Index samples) : header_(std::move(header)), samples_(samples) {
+SampleWindow::SampleWindow(Experiment header, Eigen::Index samples, Eigen::Index settle)
+    : header_(std::move(header)), samples_(samples), settle_(settle) {
   if (samples_ < 2) throw Error("sample window: at least 2 samples, got " + std::to_string(samples_));
+  if (settle_ < 0) throw Error("sample window: settle samples must be >= 0, got " + std::to_string(settle_));
 }
 
 std::string SampleWindow::check(const bus::PlantSamples& b) const {
@@ -80,14 +82,17 @@ SampleWindow::Result SampleWindow::add(const bus::PlantSamples& b) {
       result = {Outcome::restarted, b.seq == 0 ? "a new record starts" : "batch " + std::to_string(b.seq) +
                                                                              " does not follow the previous one"};
     clear();
+    if (b.seq == 0) to_drop_ = settle_;
   }
   started_ = true;
   next_seq_ = b.seq + 1;
   next_t_ = b.t0 + b.count * b.sample_time;
-  for (std::uint32_t k = 0; k < b.count; ++k) t_.push_back(b.t0 + k * b.sample_time);
-  y_.insert(y_.end(), b.y.begin(), b.y.end());
-  u_.insert(u_.end(), b.u.begin(), b.u.end());
-  r_.insert(r_.end(), b.r.begin(), b.r.end());
+  const std::size_t drop = std::size_t(std::min<Eigen::Index>(to_drop_, b.count));
+  to_drop_ -= Eigen::Index(drop);
+  for (std::size_t k = drop; k < b.count; ++k) t_.push_back(b.t0 + double(k) * b.sample_time);
+  y_.insert(y_.end(), b.y.begin() + std::ptrdiff_t(drop * b.y_names.size()), b.y.end());
+  u_.insert(u_.end(), b.u.begin() + std::ptrdiff_t(drop * b.u_names.size()), b.u.end());
+  r_.insert(r_.end(), b.r.begin() + std::ptrdiff_t(drop * b.r_names.size()), b.r.end());
   return result;
 }
 
@@ -103,6 +108,7 @@ Experiment SampleWindow::take() {
 }
 
 void SampleWindow::clear() {
+  to_drop_ = 0;
   t_.clear();
   y_.clear();
   u_.clear();

@@ -30,8 +30,9 @@ class SampleWindow {
   };
 
   // `header`: the names, sample time, plant and controller every window gets; `samples`: the
-  // window length (>= 2).
-  SampleWindow(Experiment header, Eigen::Index samples);
+  // window length (>= 2); `settle`: samples dropped after the start of every record (a new
+  // record starts at the nominal operating point: its first samples are a transient).
+  SampleWindow(Experiment header, Eigen::Index samples, Eigen::Index settle = 0);
 
   // Refuses (nothing kept) a batch whose names or sample time differ from the header's, whose
   // value arrays do not hold count rows, or with a non-finite value.
@@ -47,7 +48,8 @@ class SampleWindow {
   std::string check(const bus::PlantSamples& batch) const;
 
   Experiment header_;
-  Eigen::Index samples_;
+  Eigen::Index samples_, settle_;
+  Eigen::Index to_drop_ = 0;
   std::vector<double> t_, y_, u_, r_;  // row-major
   std::uint64_t next_seq_ = 0;
   double next_t_ = 0.0;

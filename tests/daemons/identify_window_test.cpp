@@ -71,3 +71,25 @@ TEST(SampleWindow, RejectsMalformedAndRestartsOnGaps) {
 
 }  // namespace
 }  // namespace ambid::daemons
+
+namespace ambid::daemons {
+namespace {
+
+TEST(SampleWindow, DropsTheSettlingSamplesOfEveryRecord) {
+  sim::ScenarioOptions o;
+  o.duration = 0.05;
+  const Experiment record = sim::simulate_scenario(o);
+  SampleWindow window(sim::build_scenario(o).header, 200, 150);
+  window.add(sample_batch(record, 0, 100, "p", 0, 0.0));
+  window.add(sample_batch(record, 100, 100, "p", 1, 0.0));
+  EXPECT_EQ(window.buffered(), 50);
+  // A new record (seq 0) drops its first 150 samples again.
+  window.add(sample_batch(record, 0, 200, "p", 0, 1.0));
+  EXPECT_EQ(window.buffered(), 50);
+  EXPECT_EQ(window.add(sample_batch(record, 200, 200, "p", 1, 1.0)).outcome, SampleWindow::Outcome::added);
+  const Experiment w = window.take();
+  EXPECT_DOUBLE_EQ(w.t(0), record.t(150) + 1.0);
+}
+
+}  // namespace
+}  // namespace ambid::daemons
