@@ -38,8 +38,14 @@ void run(const SourceArguments& args) {
     if (std::chrono::steady_clock::now() > deadline) throw Error("no plant daemon on domain " + std::to_string(args.bus.domain));
     bus->wait(std::chrono::milliseconds(50));
   }
-  commands->write(command);
+  // Matched here does not mean the plant's reader matched this writer yet (a volatile command
+  // would be lost): send again every second until the plant answers; it acts on a seq once.
+  auto next_send = std::chrono::steady_clock::now();
   while (std::chrono::steady_clock::now() < deadline) {
+    if (std::chrono::steady_clock::now() >= next_send) {
+      commands->write(command);
+      next_send += std::chrono::seconds(1);
+    }
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : states->take()) {
       if (s.plant_id != command.plant_id || s.command_seq != command.seq) continue;

@@ -97,7 +97,8 @@ class PlantDaemon {
 
   void handle_commands() {
     for (const bus::PlantSourceCommand& c : source_commands_->take()) {
-      if (c.plant_id != options_.plant_id) continue;
+      if (c.plant_id != options_.plant_id || c.seq == last_source_command_) continue;  // a resend
+      last_source_command_ = c.seq;
       ++runtime_.counters.received;
       try {
         source_ = make_plant_source(c.kind, c.target);
@@ -158,6 +159,7 @@ class PlantDaemon {
   Experiment record_;
   Eigen::Index row_ = 0;
   std::uint64_t seq_ = 0;
+  std::uint64_t last_source_command_ = 0;
   double clock_ = 0.0;  // plant time of the next sample, continuous across records and sources
   double record_offset_ = 0.0;
 };

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <thread>
 
+#include "core/experiment_io.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -86,6 +87,24 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 2"));
+}
+
+// `ambid record` writes an experiment file from the bus that the reader accepts; its samples
+// are the plant's nominal closed loop (x stays within a micrometre of the operating point).
+TEST(Stack, RecordWritesAnExperimentFromTheBus) {
+  Stack stack("stack_record", 177);
+  stack.start("plant");
+  const std::string stem = (stack.dir() / "recorded").string();
+  const CommandResult r = stack.ambid("record --out " + stem + " --duration 0.5");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("5000 samples"));
+  const Experiment e = read_experiment(stem).experiment;
+  EXPECT_EQ(e.samples(), 5000);
+  EXPECT_DOUBLE_EQ(e.sample_time, 1e-4);
+  EXPECT_EQ(e.plant.model, "amb1dof_voltage");
+  ASSERT_TRUE(e.controller);
+  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_GT(e.r.cwiseAbs().maxCoeff(), 0.04);  // the PRBS of 0.05 V was recorded
 }
 
 }  // namespace
