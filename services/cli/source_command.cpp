@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "services/daemons/daemon_options.hpp"
+#include "services/daemons/source_kind.hpp"
 #include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
@@ -17,17 +18,10 @@ struct SourceArguments {
   double timeout = 10.0;
 };
 
-bus::SourceKind parse_kind(const std::string& text) {
-  if (text == "sim") return bus::SourceKind::sim;
-  if (text == "replay") return bus::SourceKind::replay;
-  if (text == "rig") return bus::SourceKind::rig;
-  throw Error("source kind '" + text + "' unknown (known: sim, replay, rig)");
-}
-
 void run(const SourceArguments& args) {
   bus::PlantSourceCommand command;
   command.plant_id = args.bus.plant_id;
-  command.kind = parse_kind(args.kind);
+  command.kind = daemons::parse_source_kind(args.kind);
   command.target = args.target;
   command.seq = std::uint64_t(std::chrono::system_clock::now().time_since_epoch().count());
   auto bus = args.bus.connect();

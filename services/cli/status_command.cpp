@@ -7,6 +7,7 @@
 
 #include "services/daemons/alert_message.hpp"
 #include "services/daemons/daemon_options.hpp"
+#include "services/daemons/source_kind.hpp"
 #include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
@@ -16,10 +17,6 @@ struct StatusArguments {
   daemons::BusOptions bus;
   double wait = 3.0;
 };
-
-const char* kind_name(bus::SourceKind k) {
-  return k == bus::SourceKind::sim ? "sim" : k == bus::SourceKind::replay ? "replay" : "rig";
-}
 
 void run(const StatusArguments& args) {
   auto bus = args.bus.connect();
@@ -38,7 +35,7 @@ void run(const StatusArguments& args) {
     throw CLI::RuntimeError(3);
   }
   for (const auto& [id, s] : plants)
-    std::cout << "plant " << id << ": source " << kind_name(s.kind) << " " << s.target << " since plant time " << s.time
+    std::cout << "plant " << id << ": source " << daemons::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
               << " s" << (s.command_accepted ? "" : " (last command refused: " + s.message + ")") << "\n";
   for (const auto& [node, h] : nodes)
     std::cout << node << " (" << h.role << "): " << daemons::level_name(h.level) << " " << h.message << ", received "

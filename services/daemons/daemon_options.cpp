@@ -18,6 +18,8 @@ void add_bus_options(CLI::App& command, BusOptions& o) {
 void add_daemon_options(CLI::App& command, DaemonOptions& o) {
   add_bus_options(command, o);
   command.add_option("--config", o.config, "JSON configuration file (deploy/config/*.json)");
+  command.add_option("--metrics-port", o.metrics_port, "serve Prometheus metrics on 127.0.0.1:PORT (0: off)")
+      ->capture_default_str();
 }
 
 nlohmann::json load_config(const std::string& path) {

@@ -10,8 +10,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-DaemonRuntime::DaemonRuntime(bus::Bus& bus, std::string role, std::string node)
-    : role_(std::move(role)), node_(std::move(node)), health_(bus.writer<bus::Health>()) {
+DaemonRuntime::DaemonRuntime(bus::Bus& bus, std::string role, std::string node, int metrics_port)
+    : metrics(role, metrics_port), role_(std::move(role)), node_(std::move(node)), health_(bus.writer<bus::Health>()) {
   install_stop_handlers();
 }
 
@@ -47,9 +47,9 @@ void DaemonRuntime::publish_health() {
   h.time = seconds_since(start_);
   h.level = level_;
   h.message = message_.substr(0, bus::limits::text_length);
-  h.received = counters.received;
-  h.published = counters.published;
-  h.errors = counters.rejected;
+  h.received = std::uint64_t(metrics.received.Value());
+  h.published = std::uint64_t(metrics.published.Value());
+  h.errors = std::uint64_t(metrics.rejected.Value());
   health_->write(h);
 }
 

@@ -9,19 +9,15 @@
 #include <string>
 
 #include "services/bus/bus.hpp"
+#include "services/daemons/metrics.hpp"
 
 namespace ambid::daemons {
-
-struct Counters {
-  std::uint64_t received = 0;   // messages taken from the bus
-  std::uint64_t published = 0;  // messages written
-  std::uint64_t rejected = 0;   // malformed or refused input, failed computations
-};
 
 class DaemonRuntime {
  public:
   // Installs the stop handlers and creates the Health writer; role: "plant", "identifier", ...
-  DaemonRuntime(bus::Bus& bus, std::string role, std::string node);
+  // metrics_port: 0 for none (metrics.hpp).
+  DaemonRuntime(bus::Bus& bus, std::string role, std::string node, int metrics_port);
 
   // After the daemon's endpoints exist: tells systemd it is ready and logs one line.
   void ready(const std::string& what);
@@ -32,7 +28,7 @@ class DaemonRuntime {
   // One line on stderr, prefixed with the role (daemons log; libraries never print).
   void log(const std::string& line) const;
 
-  Counters counters;
+  Metrics metrics;  // its message counters also go into Health
 
  private:
   void publish_health();

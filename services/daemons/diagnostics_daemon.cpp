@@ -1,6 +1,7 @@
 #include "services/daemons/diagnostics_daemon.hpp"
 
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include "core/error.hpp"
@@ -40,16 +41,21 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   diag::DiagnosticsEngine engine(store, config.engine);
 
   auto bus = options.connect();
-  DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics");
+  DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics", options.metrics_port);
   auto models = bus->reader<bus::IdentifiedModel>();
   auto sources = bus->reader<bus::PlantSourceState>();
   auto alerts = bus->writer<bus::Alert>();
   runtime.ready("trend store " + config.store);
 
+  std::map<diag::Level, prometheus::Counter*> alerts_by_level;
+  for (diag::Level level : {diag::Level::ok, diag::Level::warn, diag::Level::error, diag::Level::stale})
+    alerts_by_level[level] = &runtime.metrics.counter("ambid_alerts_total", "alerts raised, by level",
+                                                      {{"level", std::string(diag::to_string(level))}});
   auto publish = [&](const std::vector<diag::Alert>& raised) {
     for (const diag::Alert& a : raised) {
       alerts->write(to_message(a));
-      ++runtime.counters.published;
+      runtime.metrics.published.Increment();
+      alerts_by_level.at(a.level)->Increment();
       runtime.log(std::string(diag::to_string(a.level)) + " " + a.parameter + ": " + a.message);
     }
   };
@@ -63,7 +69,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       if (s.plant_id == options.plant_id) source = to_source(s.kind);
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
-      ++runtime.counters.received;
+      runtime.metrics.received.Increment();
       if (last_time && m.time <= *last_time) continue;  // already processed (a late-joiner replay)
       try {
         publish(engine.process(estimate_window(m, source)));
@@ -71,7 +77,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
         last_model = std::chrono::steady_clock::now();
         stale = false;
       } catch (const Error& e) {
-        ++runtime.counters.rejected;
+        runtime.metrics.rejected.Increment();
         runtime.log("model " + std::to_string(m.seq) + " refused: " + e.what());
       }
     }

@@ -42,29 +42,35 @@ int run_identifier_daemon(const DaemonOptions& options) {
                       Eigen::Index(std::llround(config.settle / scenario.header.sample_time)));
 
   auto bus = options.connect();
-  DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier");
+  DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
   auto samples = bus->reader<bus::PlantSamples>();
   auto models = bus->writer<bus::IdentifiedModel>();
+  prometheus::Histogram& identification_seconds = runtime.metrics.histogram(
+      "ambid_identification_seconds", "wall time of one window's identification",
+      {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
   runtime.ready("windows of " + std::to_string(window_samples) + " samples");
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSamples& batch : samples->take()) {
       if (batch.plant_id != options.plant_id) continue;
-      ++runtime.counters.received;
+      runtime.metrics.received.Increment();
       const SampleWindow::Result r = window.add(batch);
       if (r.outcome == SampleWindow::Outcome::rejected) {
-        ++runtime.counters.rejected;
+        runtime.metrics.rejected.Increment();
         runtime.log("batch " + std::to_string(batch.seq) + " rejected: " + r.reason);
         runtime.set_health(bus::AlertLevel::warn, "samples rejected: " + r.reason);
       }
       while (window.full()) {
         const Experiment w = window.take();
         try {
-          models->write(identify_window(w, options.plant_id, seq++, config.deadbeat));
-          ++runtime.counters.published;
+          const auto start = std::chrono::steady_clock::now();
+          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.deadbeat);
+          identification_seconds.Observe(seconds_since(start));
+          models->write(model);
+          runtime.metrics.published.Increment();
         } catch (const Error& e) {
-          ++runtime.counters.rejected;
+          runtime.metrics.rejected.Increment();
           runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified: " + e.what());
         }
       }

@@ -7,6 +7,7 @@
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/plant_source.hpp"
 #include "services/daemons/sample_window.hpp"
+#include "services/daemons/source_kind.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -20,17 +21,10 @@ struct PlantConfig {
   double max_frequency = 2000.0;
 };
 
-bus::SourceKind parse_kind(const std::string& text) {
-  if (text == "sim") return bus::SourceKind::sim;
-  if (text == "replay") return bus::SourceKind::replay;
-  if (text == "rig") return bus::SourceKind::rig;
-  throw Error("source '" + text + "' unknown (known: sim, replay, rig)");
-}
-
 PlantConfig plant_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency"});
   PlantConfig c;
-  c.kind = parse_kind(config_value<std::string>(j, "source", "sim"));
+  c.kind = parse_source_kind(config_value<std::string>(j, "source", "sim"));
   c.target = config_value<std::string>(j, "target", "");
   c.batch_samples = config_value(j, "batch_samples", 500);
   c.speed = config_value(j, "speed", c.speed);
@@ -59,7 +53,7 @@ std::string excitation_violation(const bus::ExcitationCommand& c, const PlantCon
 class PlantDaemon {
  public:
   PlantDaemon(const DaemonOptions& o, const PlantConfig& c)
-      : options_(o), config_(c), bus_(o.connect()), runtime_(*bus_, "plant", o.plant_id + "/plant"),
+      : options_(o), config_(c), bus_(o.connect()), runtime_(*bus_, "plant", o.plant_id + "/plant", o.metrics_port),
         samples_(bus_->writer<bus::PlantSamples>()), state_(bus_->writer<bus::PlantSourceState>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
@@ -67,7 +61,7 @@ class PlantDaemon {
 
   int run() {
     announce(0, true, "started");
-    runtime_.ready(std::string(source_->kind() == bus::SourceKind::sim ? "sim " : "replay ") + source_->target());
+    runtime_.ready(std::string(source_kind_name(source_->kind())) + " " + source_->target());
     const auto start = std::chrono::steady_clock::now();
     while (runtime_.running()) {
       handle_commands();
@@ -90,7 +84,7 @@ class PlantDaemon {
     }
     const Eigen::Index count = std::min(config_.batch_samples, record_.samples() - row_);
     samples_->write(sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
-    ++runtime_.counters.published;
+    runtime_.metrics.published.Increment();
     row_ += count;
     clock_ = record_.t(row_ - 1) + record_offset_ + record_.sample_time;
   }
@@ -99,19 +93,19 @@ class PlantDaemon {
     for (const bus::PlantSourceCommand& c : source_commands_->take()) {
       if (c.plant_id != options_.plant_id || c.seq == last_source_command_) continue;  // a resend
       last_source_command_ = c.seq;
-      ++runtime_.counters.received;
+      runtime_.metrics.received.Increment();
       try {
         source_ = make_plant_source(c.kind, c.target);
         row_ = record_.samples();  // the next batch starts a record of the new source
         announce(c.seq, true, "source swapped");
       } catch (const Error& e) {
-        ++runtime_.counters.rejected;
+        runtime_.metrics.rejected.Increment();
         announce(c.seq, false, e.what());
       }
     }
     for (const bus::ExcitationCommand& c : excitation_commands_->take()) {
       if (c.plant_id != options_.plant_id) continue;
-      ++runtime_.counters.received;
+      runtime_.metrics.received.Increment();
       std::string refusal = excitation_violation(c, config_);
       if (refusal.empty()) {
         try {
@@ -126,7 +120,7 @@ class PlantDaemon {
         runtime_.log("excitation " + c.kind + " accepted (command " + std::to_string(c.seq) + ")");
         runtime_.set_health(bus::AlertLevel::ok, "excitation " + c.kind + " accepted");
       } else {
-        ++runtime_.counters.rejected;
+        runtime_.metrics.rejected.Increment();
         runtime_.log("excitation command " + std::to_string(c.seq) + " refused: " + refusal);
         runtime_.set_health(bus::AlertLevel::warn, "excitation refused: " + refusal);
       }
@@ -143,7 +137,7 @@ class PlantDaemon {
     s.command_accepted = accepted;
     s.message = message.substr(0, bus::limits::text_length);
     state_->write(s);
-    ++runtime_.counters.published;
+    runtime_.metrics.published.Increment();
     runtime_.log((accepted ? "source " : "source command refused, still ") + s.target + ": " + message);
   }
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/experiment_io.hpp"
+#include "stack_support.hpp"
 
 namespace ambid {
 namespace {
@@ -18,20 +19,8 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult run_ambid(const std::string& args) {
-  const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using testing::CommandResult;
+using testing::run_ambid;
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::path(AMBID_BINARY_DIR) / "test-output" / name;

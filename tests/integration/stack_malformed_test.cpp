@@ -47,7 +47,7 @@ bus::PlantSamples good_batch(const Experiment& e, std::uint64_t seq) {
 
 TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes) {
   Stack stack("stack_malformed", 175);
-  stack.start("identifier");
+  stack.start("identifier", {"--metrics-port", "19175"});
   auto b = bus::make_bus("fastdds", 175);
   auto samples = b->writer<bus::PlantSamples>();
   auto models = b->reader<bus::IdentifiedModel>();
@@ -88,6 +88,11 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   })) << (last ? last->received : 0);
   EXPECT_EQ(last->errors, 3u);
   EXPECT_EQ(last->published, 1u);
+  // The same counts in the Prometheus metrics.
+  const std::string metrics = http_get(19175, "/metrics");
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_messages_rejected_total{role=\"identifier\"} 3"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_messages_received_total{role=\"identifier\"} 13"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_identification_seconds_count{role=\"identifier\"} 1"));
   const std::string log = stack.log("identifier");
   EXPECT_THAT(log, ::testing::HasSubstr("a sample value is not finite"));
   EXPECT_THAT(log, ::testing::HasSubstr("signal names differ"));

@@ -1,6 +1,9 @@
 #include "stack_support.hpp"
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -29,6 +32,25 @@ CommandResult run_ambid(const std::string& args) {
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
+std::string http_get(int port, const std::string& path) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(std::uint16_t(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  std::string response;
+  if (connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0) {
+    const std::string request = "GET " + path + " HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n";
+    if (write(fd, request.data(), request.size()) == ssize_t(request.size())) {
+      std::array<char, 4096> buffer{};
+      for (ssize_t n; (n = read(fd, buffer.data(), buffer.size())) > 0;) response.append(buffer.data(), std::size_t(n));
+    }
+  }
+  close(fd);
+  const auto body = response.find("\r\n\r\n");
+  return body == std::string::npos ? std::string{} : response.substr(body + 4);
+}
+
 Stack::Stack(const std::string& name, int domain, const std::map<std::string, std::string>& vendors)
     : dir_(fs::path(AMBID_BINARY_DIR) / "test-output" / name), domain_(domain), vendors_(vendors) {
   fs::remove_all(dir_);
@@ -48,11 +70,12 @@ Stack::~Stack() {
   for (const auto& [daemon, pid] : pids_) waitpid(pid, nullptr, 0);
 }
 
-void Stack::start(const std::string& daemon) {
+void Stack::start(const std::string& daemon, const std::vector<std::string>& extra_args) {
   const std::string vendor = vendors_.count(daemon) ? vendors_.at(daemon) : "cyclone";
   const std::string config = (dir_ / (daemon + ".json")).string();
   const std::string domain = std::to_string(domain_);
   std::vector<std::string> args{AMBID_BINARY, "daemon", daemon, "--dds", vendor, "--domain", domain, "--config", config};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 namespace ambid::testing {
 
@@ -18,6 +19,9 @@ struct CommandResult {
 // Runs `ambid ARGS` to completion.
 CommandResult run_ambid(const std::string& args);
 
+// The body of http://127.0.0.1:PORT/PATH (empty when nothing answers).
+std::string http_get(int port, const std::string& path);
+
 class Stack {
  public:
   // vendors: "fastdds" or "cyclone" per daemon (plant, identifier, diagnostics).
@@ -26,7 +30,7 @@ class Stack {
   Stack(const Stack&) = delete;
   Stack& operator=(const Stack&) = delete;
 
-  void start(const std::string& daemon);
+  void start(const std::string& daemon, const std::vector<std::string>& extra_args = {});
   void kill(const std::string& daemon);  // SIGKILL: no goodbye on the bus
   // `ambid ARGS --domain D` against this stack.
   CommandResult ambid(const std::string& args) const;
