@@ -10,6 +10,8 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
   iproute2 procps libxml2-utils
   chromium  # headless rendering test of the HTML audit report
+  libsystemd-dev prometheus-cpp-dev
+  iproute2 procps
 )
 
 missing=()

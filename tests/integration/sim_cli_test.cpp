@@ -8,6 +8,7 @@
 
 #include "cli_run.hpp"
 #include "core/experiment_io.hpp"
+#include "stack_support.hpp"
 
 namespace ambid {
 namespace {

@@ -1,0 +1,57 @@
+// `ambid status`: what the running service says about itself: each daemon's latest Health and
+// the plant's current source, collected for --wait seconds.
+#include <chrono>
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "services/daemons/alert_message.hpp"
+#include "services/daemons/daemon_options.hpp"
+#include "services/daemons/source_kind.hpp"
+#include "services/cli/operator_commands.hpp"
+
+namespace ambid::cli {
+namespace {
+
+struct StatusArguments {
+  daemons::BusOptions bus;
+  double wait = 3.0;
+};
+
+void run(const StatusArguments& args) {
+  auto bus = args.bus.connect();
+  auto health = bus->reader<bus::Health>();
+  auto sources = bus->reader<bus::PlantSourceState>();
+  std::map<std::string, bus::Health> nodes;
+  std::map<std::string, bus::PlantSourceState> plants;
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.wait);
+  while (std::chrono::steady_clock::now() < end) {
+    bus->wait(std::chrono::milliseconds(100));
+    for (const auto& h : health->take()) nodes[h.node] = h;
+    for (const auto& s : sources->take()) plants[s.plant_id] = s;
+  }
+  if (nodes.empty() && plants.empty()) {
+    std::cout << "no daemon answered on domain " << args.bus.domain << " within " << args.wait << " s" << std::endl;
+    throw CLI::RuntimeError(3);
+  }
+  for (const auto& [id, s] : plants)
+    std::cout << "plant " << id << ": source " << daemons::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
+              << " s" << (s.command_accepted ? "" : " (last command refused: " + s.message + ")") << "\n";
+  for (const auto& [node, h] : nodes)
+    std::cout << node << " (" << h.role << "): " << daemons::level_name(h.level) << " " << h.message << ", received "
+              << h.received << ", published " << h.published << ", rejected " << h.errors << ", up " << h.time
+              << " s\n";
+  std::cout << std::flush;
+}
+
+}  // namespace
+
+void add_status_command(CLI::App& app) {
+  auto args = std::make_shared<StatusArguments>();
+  CLI::App* c = app.add_subcommand("status", "health of the running daemons and the plant's source");
+  daemons::add_bus_options(*c, args->bus);
+  c->add_option("--wait", args->wait, "seconds to listen")->capture_default_str();
+  c->callback([args] { run(*args); });
+}
+
+}  // namespace ambid::cli

@@ -1,0 +1,96 @@
+#include "services/daemons/diagnostics_daemon.hpp"
+
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "core/error.hpp"
+#include "diagnostics/diagnostics_engine.hpp"
+#include "services/daemons/alert_message.hpp"
+#include "services/daemons/daemon_runtime.hpp"
+
+namespace ambid::daemons {
+namespace {
+
+struct DiagnosticsConfig {
+  std::string store = "ambid-trend.sqlite";
+  diag::EngineConfig engine;
+  double silence = 3.0;
+};
+
+DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
+  reject_unknown_keys(j, "diagnostics config",
+                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence"});
+  DiagnosticsConfig c;
+  c.store = config_value(j, "store", c.store);
+  c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
+  c.engine.policy.persist_windows = std::size_t(config_value(j, "persist_windows", 100));
+  c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
+  c.engine.policy.stale_timeout = config_value(j, "stale_timeout", c.engine.policy.stale_timeout);
+  c.silence = config_value(j, "silence", c.silence);
+  c.engine.validate();
+  if (!(c.silence > 0)) throw Error("diagnostics config: silence must be > 0 s, got " + std::to_string(c.silence));
+  return c;
+}
+
+}  // namespace
+
+int run_diagnostics_daemon(const DaemonOptions& options) {
+  const DiagnosticsConfig config = diagnostics_config(load_config(options.config));
+  diag::TrendStore store(config.store);
+  diag::DiagnosticsEngine engine(store, config.engine);
+
+  auto bus = options.connect();
+  DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics", options.metrics_port);
+  auto models = bus->reader<bus::IdentifiedModel>();
+  auto sources = bus->reader<bus::PlantSourceState>();
+  auto alerts = bus->writer<bus::Alert>();
+  runtime.ready("trend store " + config.store);
+
+  std::map<diag::Level, prometheus::Counter*> alerts_by_level;
+  for (diag::Level level : {diag::Level::ok, diag::Level::warn, diag::Level::error, diag::Level::stale})
+    alerts_by_level[level] = &runtime.metrics.counter("ambid_alerts_total", "alerts raised, by level",
+                                                      {{"level", std::string(diag::to_string(level))}});
+  auto publish = [&](const std::vector<diag::Alert>& raised) {
+    for (const diag::Alert& a : raised) {
+      alerts->write(to_message(a));
+      runtime.metrics.published.Increment();
+      alerts_by_level.at(a.level)->Increment();
+      runtime.log(std::string(diag::to_string(a.level)) + " " + a.parameter + ": " + a.message);
+    }
+  };
+  diag::Source source = diag::Source::sim;
+  std::optional<double> last_time;  // plant time of the last model processed
+  auto last_model = std::chrono::steady_clock::now();
+  bool stale = false;
+  while (runtime.running()) {
+    bus->wait(std::chrono::milliseconds(100));
+    for (const bus::PlantSourceState& s : sources->take())
+      if (s.plant_id == options.plant_id) source = to_source(s.kind);
+    for (const bus::IdentifiedModel& m : models->take()) {
+      if (m.plant_id != options.plant_id) continue;
+      runtime.metrics.received.Increment();
+      if (last_time && m.time <= *last_time) continue;  // already processed (a late-joiner replay)
+      try {
+        publish(engine.process(estimate_window(m, source)));
+        last_time = m.time;
+        last_model = std::chrono::steady_clock::now();
+        stale = false;
+      } catch (const Error& e) {
+        runtime.metrics.rejected.Increment();
+        runtime.log("model " + std::to_string(m.seq) + " refused: " + e.what());
+      }
+    }
+    bool silent = seconds_since(last_model) > config.silence;
+    for (const bus::StatusEvent& e : models->events())
+      silent = silent || e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched;
+    if (silent && last_time && !stale) {
+      // The engine's clock is the plant's: the source went silent after *last_time.
+      publish(engine.check_stale(std::nextafter(*last_time + config.engine.policy.stale_timeout, INFINITY)));
+      stale = true;
+    }
+  }
+  return 0;
+}
+
+}  // namespace ambid::daemons

@@ -1,0 +1,17 @@
+#pragma once
+// `ambid daemon diagnostics`: identified models -> diagnostics engine (trend store in SQLite)
+// -> Alert messages (transient-local: a late subscriber gets the latest). When the models stop
+// (the identifier's writer loses liveliness or goes away, or none came for `silence` seconds
+// of wall time) every parameter of the plant is marked STALE at the last model time plus the
+// stale timeout; the next model brings it back to OK.
+//
+// Config (JSON, every key optional):
+//   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,
+//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall)}
+#include "services/daemons/daemon_options.hpp"
+
+namespace ambid::daemons {
+
+int run_diagnostics_daemon(const DaemonOptions& options);
+
+}  // namespace ambid::daemons

@@ -1,0 +1,82 @@
+#include "services/daemons/identifier_daemon.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/identify_window.hpp"
+#include "services/daemons/sample_window.hpp"
+#include "services/daemons/scenario_json.hpp"
+
+namespace ambid::daemons {
+namespace {
+
+struct IdentifierConfig {
+  sim::ScenarioOptions scenario;
+  double window = 0.25;
+  double settle = 0.25;
+  ident::DeadbeatOptions deadbeat;
+};
+
+IdentifierConfig identifier_config(const nlohmann::json& j) {
+  reject_unknown_keys(j, "identifier config", {"scenario", "window", "settle", "transient_samples"});
+  IdentifierConfig c;
+  if (const std::string file = config_value<std::string>(j, "scenario", ""); !file.empty())
+    c.scenario = read_scenario_file(file);
+  c.scenario.true_parameters.clear();
+  c.window = config_value(j, "window", c.window);
+  c.settle = config_value(j, "settle", c.settle);
+  if (!(c.settle >= 0)) throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.settle));
+  c.deadbeat.transient_samples = config_value(j, "transient_samples", 0);
+  if (!(c.window > 0)) throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.window));
+  return c;
+}
+
+}  // namespace
+
+int run_identifier_daemon(const DaemonOptions& options) {
+  const IdentifierConfig config = identifier_config(load_config(options.config));
+  const sim::Scenario scenario = sim::build_scenario(config.scenario);
+  const auto window_samples = Eigen::Index(std::llround(config.window / scenario.header.sample_time));
+  SampleWindow window(scenario.header, window_samples,
+                      Eigen::Index(std::llround(config.settle / scenario.header.sample_time)));
+
+  auto bus = options.connect();
+  DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
+  auto samples = bus->reader<bus::PlantSamples>();
+  auto models = bus->writer<bus::IdentifiedModel>();
+  prometheus::Histogram& identification_seconds = runtime.metrics.histogram(
+      "ambid_identification_seconds", "wall time of one window's identification",
+      {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
+  runtime.ready("windows of " + std::to_string(window_samples) + " samples");
+  std::uint64_t seq = 0;
+  while (runtime.running()) {
+    bus->wait(std::chrono::milliseconds(100));
+    for (const bus::PlantSamples& batch : samples->take()) {
+      if (batch.plant_id != options.plant_id) continue;
+      runtime.metrics.received.Increment();
+      const SampleWindow::Result r = window.add(batch);
+      if (r.outcome == SampleWindow::Outcome::rejected) {
+        runtime.metrics.rejected.Increment();
+        runtime.log("batch " + std::to_string(batch.seq) + " rejected: " + r.reason);
+        runtime.set_health(bus::AlertLevel::warn, "samples rejected: " + r.reason);
+      }
+      while (window.full()) {
+        const Experiment w = window.take();
+        try {
+          const auto start = std::chrono::steady_clock::now();
+          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.deadbeat);
+          identification_seconds.Observe(seconds_since(start));
+          models->write(model);
+          runtime.metrics.published.Increment();
+        } catch (const Error& e) {
+          runtime.metrics.rejected.Increment();
+          runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified: " + e.what());
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace ambid::daemons

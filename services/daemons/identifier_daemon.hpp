@@ -1,0 +1,18 @@
+#pragma once
+// `ambid daemon identifier`: collects the plant's samples into windows (sample_window.hpp) and
+// publishes the identified model of each (identify_window.hpp). It needs the plant's nominal
+// description and controller, which are not on the bus: they come from the scenario file the
+// plant runs under (the nominal one; its true_parameters are ignored).
+//
+// Config (JSON, every key optional):
+//   {"scenario": FILE (default: the built-in nominal amb1dof_voltage scenario),
+//    "window": 0.25 (s of samples per identification),
+//    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal
+//    operating point to the plant's own), "transient_samples": 0}
+#include "services/daemons/daemon_options.hpp"
+
+namespace ambid::daemons {
+
+int run_identifier_daemon(const DaemonOptions& options);
+
+}  // namespace ambid::daemons

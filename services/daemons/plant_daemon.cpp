@@ -1,0 +1,167 @@
+#include "services/daemons/plant_daemon.hpp"
+
+#include <algorithm>
+#include <thread>
+
+#include "core/error.hpp"
+#include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/plant_source.hpp"
+#include "services/daemons/sample_window.hpp"
+#include "services/daemons/source_kind.hpp"
+
+namespace ambid::daemons {
+namespace {
+
+struct PlantConfig {
+  bus::SourceKind kind = bus::SourceKind::sim;
+  std::string target;
+  Eigen::Index batch_samples = 500;
+  double speed = 10.0;
+  double max_amplitude = 0.5;
+  double max_frequency = 2000.0;
+};
+
+PlantConfig plant_config(const nlohmann::json& j) {
+  reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency"});
+  PlantConfig c;
+  c.kind = parse_source_kind(config_value<std::string>(j, "source", "sim"));
+  c.target = config_value<std::string>(j, "target", "");
+  c.batch_samples = config_value(j, "batch_samples", 500);
+  c.speed = config_value(j, "speed", c.speed);
+  c.max_amplitude = config_value(j, "max_amplitude", c.max_amplitude);
+  c.max_frequency = config_value(j, "max_frequency", c.max_frequency);
+  if (c.target.empty()) throw Error("plant config: 'target' (the scenario or experiment file) is required");
+  if (c.batch_samples < 1 || c.batch_samples > 2000)
+    throw Error("plant config: batch_samples must be 1..2000, got " + std::to_string(c.batch_samples));
+  if (!(c.speed > 0)) throw Error("plant config: speed must be > 0, got " + std::to_string(c.speed));
+  return c;
+}
+
+// Empty when the command is within the limits, else why it is refused.
+std::string excitation_violation(const bus::ExcitationCommand& c, const PlantConfig& limits) {
+  static const std::vector<std::string> kinds{"prbs", "multisine", "chirp", "stepped_sine", "none"};
+  if (std::find(kinds.begin(), kinds.end(), c.kind) == kinds.end())
+    return "unknown excitation kind '" + c.kind + "' (known: prbs, multisine, chirp, stepped_sine, none)";
+  if (!(c.amplitude >= 0 && c.amplitude <= limits.max_amplitude))
+    return "amplitude " + std::to_string(c.amplitude) + " V outside 0.." + std::to_string(limits.max_amplitude) + " V";
+  for (double f : c.frequencies)
+    if (!(f > 0 && f <= limits.max_frequency))
+      return "frequency " + std::to_string(f) + " Hz outside (0, " + std::to_string(limits.max_frequency) + "] Hz";
+  return {};
+}
+
+class PlantDaemon {
+ public:
+  PlantDaemon(const DaemonOptions& o, const PlantConfig& c)
+      : options_(o), config_(c), bus_(o.connect()), runtime_(*bus_, "plant", o.plant_id + "/plant", o.metrics_port),
+        samples_(bus_->writer<bus::PlantSamples>()), state_(bus_->writer<bus::PlantSourceState>()),
+        source_commands_(bus_->reader<bus::PlantSourceCommand>()),
+        excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
+        source_(make_plant_source(c.kind, c.target)) {}
+
+  int run() {
+    announce(0, true, "started");
+    runtime_.ready(std::string(source_kind_name(source_->kind())) + " " + source_->target());
+    const auto start = std::chrono::steady_clock::now();
+    while (runtime_.running()) {
+      handle_commands();
+      publish_batch();
+      // Pace: the simulated time published so far, at `speed` times real time.
+      const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                   std::chrono::duration<double>(clock_ / config_.speed));
+      std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(200)));
+    }
+    return 0;
+  }
+
+ private:
+  void publish_batch() {
+    if (row_ >= record_.samples()) {
+      record_ = source_->next_record();
+      record_offset_ = clock_ - record_.t(0);
+      row_ = 0;
+      seq_ = 0;
+    }
+    const Eigen::Index count = std::min(config_.batch_samples, record_.samples() - row_);
+    samples_->write(sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
+    runtime_.metrics.published.Increment();
+    row_ += count;
+    clock_ = record_.t(row_ - 1) + record_offset_ + record_.sample_time;
+  }
+
+  void handle_commands() {
+    for (const bus::PlantSourceCommand& c : source_commands_->take()) {
+      if (c.plant_id != options_.plant_id || c.seq == last_source_command_) continue;  // a resend
+      last_source_command_ = c.seq;
+      runtime_.metrics.received.Increment();
+      try {
+        source_ = make_plant_source(c.kind, c.target);
+        row_ = record_.samples();  // the next batch starts a record of the new source
+        announce(c.seq, true, "source swapped");
+      } catch (const Error& e) {
+        runtime_.metrics.rejected.Increment();
+        announce(c.seq, false, e.what());
+      }
+    }
+    for (const bus::ExcitationCommand& c : excitation_commands_->take()) {
+      if (c.plant_id != options_.plant_id) continue;
+      runtime_.metrics.received.Increment();
+      std::string refusal = excitation_violation(c, config_);
+      if (refusal.empty()) {
+        try {
+          const auto [lo, hi] = std::minmax_element(c.frequencies.begin(), c.frequencies.end());
+          source_->excite({c.kind, c.amplitude, c.frequencies.empty() ? 0.0 : *lo,
+                           c.frequencies.empty() ? 0.0 : *hi});
+        } catch (const Error& e) {
+          refusal = e.what();
+        }
+      }
+      if (refusal.empty()) {
+        runtime_.log("excitation " + c.kind + " accepted (command " + std::to_string(c.seq) + ")");
+        runtime_.set_health(bus::AlertLevel::ok, "excitation " + c.kind + " accepted");
+      } else {
+        runtime_.metrics.rejected.Increment();
+        runtime_.log("excitation command " + std::to_string(c.seq) + " refused: " + refusal);
+        runtime_.set_health(bus::AlertLevel::warn, "excitation refused: " + refusal);
+      }
+    }
+  }
+
+  void announce(std::uint64_t command_seq, bool accepted, const std::string& message) {
+    bus::PlantSourceState s;
+    s.plant_id = options_.plant_id;
+    s.time = clock_;
+    s.kind = source_->kind();
+    s.target = source_->target().substr(0, bus::limits::text_length);
+    s.command_seq = command_seq;
+    s.command_accepted = accepted;
+    s.message = message.substr(0, bus::limits::text_length);
+    state_->write(s);
+    runtime_.metrics.published.Increment();
+    runtime_.log((accepted ? "source " : "source command refused, still ") + s.target + ": " + message);
+  }
+
+  DaemonOptions options_;
+  PlantConfig config_;
+  std::unique_ptr<bus::Bus> bus_;
+  DaemonRuntime runtime_;
+  std::unique_ptr<bus::Writer<bus::PlantSamples>> samples_;
+  std::unique_ptr<bus::Writer<bus::PlantSourceState>> state_;
+  std::unique_ptr<bus::Reader<bus::PlantSourceCommand>> source_commands_;
+  std::unique_ptr<bus::Reader<bus::ExcitationCommand>> excitation_commands_;
+  std::unique_ptr<PlantSource> source_;
+  Experiment record_;
+  Eigen::Index row_ = 0;
+  std::uint64_t seq_ = 0;
+  std::uint64_t last_source_command_ = 0;
+  double clock_ = 0.0;  // plant time of the next sample, continuous across records and sources
+  double record_offset_ = 0.0;
+};
+
+}  // namespace
+
+int run_plant_daemon(const DaemonOptions& options) {
+  return PlantDaemon(options, plant_config(load_config(options.config))).run();
+}
+
+}  // namespace ambid::daemons

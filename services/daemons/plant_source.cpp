@@ -1,0 +1,62 @@
+#include "services/daemons/plant_source.hpp"
+
+#include "core/error.hpp"
+#include "core/experiment_io.hpp"
+#include "services/daemons/scenario_json.hpp"
+
+namespace ambid::daemons {
+namespace {
+
+class SimSource : public PlantSource {
+ public:
+  explicit SimSource(const std::string& file) : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)) {}
+
+  Experiment next_record() override {
+    sim::ScenarioOptions o = options_;
+    o.seed = options_.seed + records_++;
+    return sim::simulate_scenario(o);
+  }
+
+  void excite(const ExcitationRequest& r) override {
+    sim::ScenarioOptions o = options_;
+    o.excitation = r.kind;
+    o.amplitude = r.amplitude;
+    if (r.f_max > 0) {
+      o.f_min = r.f_min;
+      o.f_max = r.f_max;
+    }
+    sim::build_scenario(o);  // refuses what the simulation cannot run
+    options_ = o;
+  }
+
+ private:
+  sim::ScenarioOptions options_;
+  std::uint64_t records_ = 0;
+};
+
+class ReplaySource : public PlantSource {
+ public:
+  explicit ReplaySource(const std::string& file)
+      : PlantSource(bus::SourceKind::replay, file), record_(read_experiment(file).experiment) {}
+  Experiment next_record() override { return record_; }
+  void excite(const ExcitationRequest&) override { throw Error("a replayed experiment cannot be excited"); }
+
+ private:
+  Experiment record_;
+};
+
+}  // namespace
+
+std::unique_ptr<PlantSource> make_plant_source(bus::SourceKind kind, const std::string& target) {
+  switch (kind) {
+    case bus::SourceKind::sim:
+      return std::make_unique<SimSource>(target);
+    case bus::SourceKind::replay:
+      return std::make_unique<ReplaySource>(target);
+    case bus::SourceKind::rig:
+      break;
+  }
+  throw Error("source rig " + target + ": the rig gateway is not built yet (sources: sim, replay)");
+}
+
+}  // namespace ambid::daemons

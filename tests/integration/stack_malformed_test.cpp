@@ -1,0 +1,138 @@
+// Malformed input to running daemons: refused, counted in their Health (the `rejected`
+// counter that `ambid status` shows), never a crash; good input afterwards is still served.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "plant_sim/scenario.hpp"
+#include "services/bus/bus.hpp"
+#include "stack_support.hpp"
+
+namespace ambid::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+template <class Predicate>
+bool wait_for(bus::Bus& b, std::chrono::seconds limit, Predicate done) {
+  const auto end = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < end) {
+    if (done()) return true;
+    b.wait(100ms);
+  }
+  return done();
+}
+
+// One good batch of 500 samples of the nominal simulation.
+bus::PlantSamples good_batch(const Experiment& e, std::uint64_t seq) {
+  bus::PlantSamples b;
+  b.plant_id = "bearing-1";
+  b.seq = seq;
+  b.t0 = e.t(Eigen::Index(seq) * 500);
+  b.sample_time = e.sample_time;
+  b.count = 500;
+  b.y_names = e.y_names;
+  b.u_names = e.u_names;
+  b.r_names = e.r_names;
+  for (Eigen::Index k = Eigen::Index(seq) * 500; k < Eigen::Index(seq + 1) * 500; ++k) {
+    for (Eigen::Index j = 0; j < e.y.cols(); ++j) b.y.push_back(e.y(k, j));
+    for (Eigen::Index j = 0; j < e.u.cols(); ++j) b.u.push_back(e.u(k, j));
+    for (Eigen::Index j = 0; j < e.r.cols(); ++j) b.r.push_back(e.r(k, j));
+  }
+  return b;
+}
+
+TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes) {
+  Stack stack("stack_malformed", 175);
+  stack.start("identifier", {"--metrics-port", "19175"});
+  auto b = bus::make_bus("fastdds", 175);
+  auto samples = b->writer<bus::PlantSamples>();
+  auto models = b->reader<bus::IdentifiedModel>();
+  auto health = b->reader<bus::Health>();
+  ASSERT_TRUE(wait_for(*b, 10s, [&] { return samples->matched() > 0; }));
+  std::this_thread::sleep_for(1s);  // matched here does not yet mean the identifier matched us
+
+  sim::ScenarioOptions o;
+  o.duration = 0.6;
+  const Experiment e = sim::simulate_scenario(o);
+  // Oversized or inconsistent: the bus refuses to send it at all.
+  bus::PlantSamples oversized = good_batch(e, 0);
+  oversized.y.resize(bus::limits::max_batch_values + 1, 0.0);
+  EXPECT_THROW(samples->write(oversized), bus::InvalidMessage);
+  // Well-formed on the wire but wrong for the plant: the identifier refuses them.
+  bus::PlantSamples nan = good_batch(e, 0);
+  nan.y[5] = std::nan("");
+  bus::PlantSamples names = good_batch(e, 0);
+  names.y_names[0] = "z";
+  bus::PlantSamples rate = good_batch(e, 0);
+  rate.sample_time = 1e-3;
+  for (const auto* bad : {&nan, &names, &rate}) samples->write(*bad);
+  // Then 0.5 s of good samples: 0.25 s settling, one 0.25 s window.
+  for (std::uint64_t seq = 0; seq < 10; ++seq) samples->write(good_batch(e, seq));
+
+  std::vector<bus::IdentifiedModel> got;
+  ASSERT_TRUE(wait_for(*b, 20s, [&] {
+    for (auto& m : models->take()) got.push_back(m);
+    return !got.empty();
+  })) << stack.log("identifier");
+  EXPECT_EQ(got[0].plant_id, "bearing-1");
+  EXPECT_NEAR(got[0].window, 0.25, 1e-9);
+  std::optional<bus::Health> last;
+  ASSERT_TRUE(wait_for(*b, 5s, [&] {
+    for (auto& h : health->take())
+      if (h.role == "identifier") last = h;
+    return last && last->received == 13;
+  })) << (last ? last->received : 0);
+  EXPECT_EQ(last->errors, 3u);
+  EXPECT_EQ(last->published, 1u);
+  // The same counts in the Prometheus metrics.
+  const std::string metrics = http_get(19175, "/metrics");
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_messages_rejected_total{role=\"identifier\"} 3"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_messages_received_total{role=\"identifier\"} 13"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_identification_seconds_count{role=\"identifier\"} 1"));
+  const std::string log = stack.log("identifier");
+  EXPECT_THAT(log, ::testing::HasSubstr("a sample value is not finite"));
+  EXPECT_THAT(log, ::testing::HasSubstr("signal names differ"));
+  EXPECT_THAT(log, ::testing::HasSubstr("sample time 0.001"));
+}
+
+TEST(StackMalformed, PlantRefusesExcitationOutsideItsLimits) {
+  Stack stack("stack_excitation", 176);
+  stack.start("plant");
+  auto b = bus::make_bus("cyclone", 176);
+  auto commands = b->writer<bus::ExcitationCommand>();
+  auto health = b->reader<bus::Health>();
+  ASSERT_TRUE(wait_for(*b, 10s, [&] { return commands->matched() > 0; }));
+  std::this_thread::sleep_for(1s);
+  bus::ExcitationCommand c;
+  c.plant_id = "bearing-1";
+  c.kind = "multisine";
+  c.amplitude = 5.0;  // limit 0.5 V
+  c.seq = 1;
+  commands->write(c);
+  c.amplitude = 0.1;
+  c.frequencies = {10.0, 5000.0};  // limit 2000 Hz
+  c.seq = 2;
+  commands->write(c);
+  c.kind = "square";
+  c.frequencies = {};
+  c.seq = 3;
+  commands->write(c);
+  std::optional<bus::Health> last;
+  ASSERT_TRUE(wait_for(*b, 10s, [&] {
+    for (auto& h : health->take())
+      if (h.role == "plant") last = h;
+    return last && last->errors == 3;
+  })) << stack.log("plant");
+  EXPECT_EQ(last->level, bus::AlertLevel::warn);
+  const std::string log = stack.log("plant");
+  EXPECT_THAT(log, ::testing::HasSubstr("amplitude 5.000000 V outside 0..0.500000 V"));
+  EXPECT_THAT(log, ::testing::HasSubstr("frequency 5000.000000 Hz outside"));
+  EXPECT_THAT(log, ::testing::HasSubstr("unknown excitation kind 'square'"));
+}
+
+}  // namespace
+}  // namespace ambid::testing

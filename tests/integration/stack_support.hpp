@@ -1,0 +1,48 @@
+#pragma once
+// The ambid service as real processes for integration tests: the three daemons of
+// deploy/local-stack.sh, each a child process of the test on its own domain, with configs
+// written into a fresh directory (short windows, fast learning).
+#include <sys/types.h>
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ambid::testing {
+
+struct CommandResult {
+  int status;          // exit code, -1 when killed
+  std::string output;  // stdout and stderr
+};
+
+// Runs `ambid ARGS` to completion.
+CommandResult run_ambid(const std::string& args);
+
+// The body of http://127.0.0.1:PORT/PATH (empty when nothing answers).
+std::string http_get(int port, const std::string& path);
+
+class Stack {
+ public:
+  // vendors: "fastdds" or "cyclone" per daemon (plant, identifier, diagnostics).
+  Stack(const std::string& name, int domain, const std::map<std::string, std::string>& vendors = {});
+  ~Stack();  // SIGTERM to every daemon still running, then waits
+  Stack(const Stack&) = delete;
+  Stack& operator=(const Stack&) = delete;
+
+  void start(const std::string& daemon, const std::vector<std::string>& extra_args = {});
+  void kill(const std::string& daemon);  // SIGKILL: no goodbye on the bus
+  // `ambid ARGS --domain D` against this stack.
+  CommandResult ambid(const std::string& args) const;
+  const std::filesystem::path& dir() const { return dir_; }
+  std::filesystem::path store() const { return dir_ / "trend.sqlite"; }
+  std::string log(const std::string& daemon) const;
+
+ private:
+  std::filesystem::path dir_;
+  int domain_;
+  std::map<std::string, std::string> vendors_;
+  std::map<std::string, pid_t> pids_;
+};
+
+}  // namespace ambid::testing

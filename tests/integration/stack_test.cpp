@@ -1,0 +1,111 @@
+// The whole service as separate processes over DDS (loopback profile, one domain per test):
+// a simulated bearing, then its plant source swapped to the same bearing with R1 +20 %
+// (deploy/config/coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
+// coil 1 resistance within a bounded time. Each test takes 10-20 s.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "core/experiment_io.hpp"
+#include "stack_support.hpp"
+
+namespace ambid::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+const std::string coil1_hot = std::string(AMBID_SOURCE_DIR) + "/deploy/config/coil1-hot.json";
+
+void start_all(Stack& stack) {
+  for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
+}
+
+// Swaps the source once the baseline is learned (10 windows of 0.25 s plant time at 10x real
+// time: 0.25 s wall plus discovery), then waits at most 30 s for the ERROR about R1.
+void expect_coil1_error(Stack& stack) {
+  std::this_thread::sleep_for(std::chrono::seconds(4));
+  const CommandResult swap = stack.ambid("source set sim " + coil1_hot);
+  ASSERT_EQ(swap.status, 0) << swap.output;
+  EXPECT_THAT(swap.output, HasSubstr("coil1-hot.json (source swapped"));
+  const CommandResult alerts = stack.ambid("alerts --until ERROR:R1 --timeout 30");
+  ASSERT_EQ(alerts.status, 0) << alerts.output << stack.log("diagnostics");
+  EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
+  EXPECT_THAT(alerts.output, HasSubstr("coil 1 resistance"));
+}
+
+TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
+  Stack stack("stack_cyclone", 170);
+  start_all(stack);
+  expect_coil1_error(stack);
+  // Before the fault nothing was wrong: no alert before the swap's plant time.
+  const CommandResult status = stack.ambid("status --wait 2");
+  EXPECT_THAT(status.output, HasSubstr("source sim " + coil1_hot));
+  EXPECT_THAT(stack.log("diagnostics"), ::testing::Not(HasSubstr("rejected")));
+}
+
+// Samples Fast DDS -> Cyclone, models Cyclone -> Fast DDS, alerts Fast DDS -> Cyclone (the CLI).
+TEST(Stack, DaemonsSplitAcrossVendors) {
+  Stack stack("stack_mixed", 171, {{"plant", "fastdds"}, {"identifier", "cyclone"}, {"diagnostics", "fastdds"}});
+  start_all(stack);
+  expect_coil1_error(stack);
+}
+
+// The other direction for every hop: samples Cyclone -> Fast DDS, models Fast DDS -> Cyclone.
+TEST(Stack, DaemonsSplitAcrossVendorsTheOtherWay) {
+  Stack stack("stack_mixed_reverse", 172, {{"plant", "cyclone"}, {"identifier", "fastdds"}, {"diagnostics", "cyclone"}});
+  start_all(stack);
+  expect_coil1_error(stack);
+}
+
+// The identifier dies (SIGKILL) mid-run: the operator sees STALE, then OK once it is back.
+TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOk) {
+  Stack stack("stack_restart", 173);
+  start_all(stack);
+  std::this_thread::sleep_for(std::chrono::seconds(4));
+  stack.kill("identifier");
+  const CommandResult stale = stack.ambid("alerts --until STALE:R1 --timeout 20");
+  ASSERT_EQ(stale.status, 0) << stale.output << stack.log("diagnostics");
+  stack.start("identifier");
+  const CommandResult ok = stack.ambid("alerts --until OK:R1 --timeout 20");
+  ASSERT_EQ(ok.status, 0) << ok.output << stack.log("diagnostics");
+  EXPECT_THAT(ok.output, HasSubstr("estimates resumed"));
+}
+
+TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
+  Stack stack("stack_refusal", 174);
+  stack.start("plant");
+  const CommandResult missing = stack.ambid("source set sim /nonexistent/scenario.json");
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_THAT(missing.output, HasSubstr("refused the source"));
+  EXPECT_THAT(missing.output, HasSubstr("/nonexistent/scenario.json"));
+  const CommandResult rig = stack.ambid("source set rig 127.0.0.1:5000");
+  EXPECT_EQ(rig.status, 1) << rig.output;
+  EXPECT_THAT(rig.output, HasSubstr("rig gateway is not built yet"));
+  const CommandResult status = stack.ambid("status --wait 2");
+  EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
+  EXPECT_THAT(status.output, HasSubstr("rejected 2"));
+}
+
+// `ambid record` writes an experiment file from the bus that the reader accepts; its samples
+// are the plant's nominal closed loop (x stays within a micrometre of the operating point).
+TEST(Stack, RecordWritesAnExperimentFromTheBus) {
+  Stack stack("stack_record", 177);
+  stack.start("plant");
+  const std::string stem = (stack.dir() / "recorded").string();
+  const CommandResult r = stack.ambid("record --out " + stem + " --duration 0.5");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("5000 samples"));
+  const Experiment e = read_experiment(stem).experiment;
+  EXPECT_EQ(e.samples(), 5000);
+  EXPECT_DOUBLE_EQ(e.sample_time, 1e-4);
+  EXPECT_EQ(e.plant.model, "amb1dof_voltage");
+  ASSERT_TRUE(e.controller);
+  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_GT(e.r.cwiseAbs().maxCoeff(), 0.04);  // the PRBS of 0.05 V was recorded
+}
+
+}  // namespace
+}  // namespace ambid::testing
