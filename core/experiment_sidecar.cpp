@@ -155,13 +155,7 @@ json sidecar_json(const Experiment& e) {
       c["initial_state"] = std::vector<double>(k.initial_state.data(), k.initial_state.data() + k.initial_state.size());
   }
   // validate_metadata() guaranteed extra never collides with a defined key.
-  if (e.extra.is_object())
-    for (const auto& [key, value] : e.extra.items()) {
-      if (j.contains(key) && j[key].is_object())
-        j[key].update(value);
-      else
-        j[key] = value;
-    }
+  merge_unknown(j, e.extra);
   return j;
 }
 

@@ -78,6 +78,16 @@ void keep_unknown(const json& object, const std::set<std::string>& known, json& 
     if (!known.count(key)) extra[key] = value;
 }
 
+void merge_unknown(json& j, const json& extra) {
+  if (!extra.is_object()) return;
+  for (const auto& [key, value] : extra.items()) {
+    if (j.contains(key) && j[key].is_object())
+      j[key].update(value);
+    else
+      j[key] = value;
+  }
+}
+
 json matrix_json(const Eigen::MatrixXd& m) {
   json rows = json::array();
   for (Eigen::Index i = 0; i < m.rows(); ++i) {

@@ -30,6 +30,10 @@ Eigen::MatrixXd as_matrix(const json& value, const std::string& path, Eigen::Ind
 // Copies the keys of `object` that the format does not define into `extra`.
 void keep_unknown(const json& object, const std::set<std::string>& known, json& extra);
 
+// Puts the kept unknown keys back: an object in `extra` whose key names an object of `j` is
+// merged into it, anything else set at the top.
+void merge_unknown(json& j, const json& extra);
+
 // Rows of numbers, the form as_matrix reads.
 json matrix_json(const Eigen::MatrixXd& m);
 

@@ -125,12 +125,7 @@ json model_json(const Model& m) {
   j["physical"] = m.physical;
   j["uncertainty"] = m.uncertainty;
   j["fit"] = {{"nrmse", m.fit_nrmse}};
-  for (const auto& [key, value] : m.extra.items()) {
-    if (j.contains(key) && j[key].is_object())
-      j[key].update(value);
-    else
-      j[key] = value;
-  }
+  merge_unknown(j, m.extra);
   return j;
 }
 

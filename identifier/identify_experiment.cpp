@@ -88,25 +88,28 @@ DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx
   return era(markov_from_arx(arx, markov_count).system, e.sample_time, eo).system;
 }
 
+// The options the ARX -> Markov -> ERA methods share.
+template <typename Options>
+Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+  Options out;
+  out.arx_order = arx_order;
+  out.markov_count = markov_count;
+  out.sample_time = e.sample_time;
+  out.era.order = model_order(e, o);
+  return out;
+}
+
 DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
   require_excitation(e, "closed-loop");
   const LoopSignals s = signals_of(e);
-  KnownControllerIdOptions co;
-  co.arx_order = arx_order;
-  co.markov_count = markov_count;
-  co.sample_time = e.sample_time;
-  co.era.order = model_order(e, o);
+  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count);
   return identify_with_known_controller(s.r, s.y, controller_of(e, s, "closed-loop"), co).plant;
 }
 
 DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
   require_excitation(e, "projection");  // without r, uf = u and the plant input is not excited independently
   const LoopSignals s = signals_of(e);
-  ProjectionFilterOptions po;
-  po.arx_order = arx_order;
-  po.markov_count = markov_count;
-  po.sample_time = e.sample_time;
-  po.era.order = model_order(e, o);
+  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count);
   return identify_projection_filter(s.y, s.u, s.uf, po).plant;
 }
 

@@ -38,7 +38,7 @@ struct IdentifyOptions {
 
 inline constexpr Eigen::Index kDefaultArxOrder = 16;
 inline constexpr Eigen::Index kDefaultMarkovCount = 30;
-inline constexpr Eigen::Index kDefaultInstrumentLags = 20;
+inline constexpr Eigen::Index kDefaultInstrumentLags = 60;
 
 const std::vector<std::string>& identification_methods();
 

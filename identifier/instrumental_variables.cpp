@@ -25,6 +25,14 @@ LeastSquaresSolution solve_instrumental_variables(const Eigen::MatrixXd& phi, co
   block << phi, z;
   projection.add(instruments, block);
   const Eigen::MatrixXd top = projection.factor().topRows(w);  // w x (w + p + t)
+  // Q_w spans the instruments only when R_ww is regular (the columns of W independent).
+  const Eigen::MatrixXd Rww = top.leftCols(w);
+  Eigen::VectorXd scale(w);
+  for (Eigen::Index j = 0; j < w; ++j) scale(j) = Rww.col(j).norm() > 0.0 ? 1.0 / Rww.col(j).norm() : 0.0;
+  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(Rww * scale.asDiagonal()).singularValues();
+  if (!(sv(w - 1) > 1e-10 * sv(0)))
+    throw InsufficientData("instrumental variables: the instruments are linearly dependent or zero (reciprocal "
+                           "condition " + std::to_string(sv(w - 1) / sv(0)) + "): they cannot separate the regressors");
   // Stage two: least squares on the projected equations.
   LeastSquaresAccumulator projected(p, t, names);
   projected.add(top.middleCols(w, p), top.rightCols(t));
