@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "identifier/frf_periodic.hpp"
+#include "identifier/frf_stepped_sine.hpp"
 #include "identifier/frf_welch.hpp"
 #include "identifier/rational_fit_order.hpp"
 
@@ -98,6 +99,39 @@ std::optional<PeriodicFrfOptions> periodic_options(const Experiment& e, const nl
   return p;
 }
 
+// The stepped-sine estimator's options from the description, or nullopt (with a note) when
+// the steps cannot be analysed one by one.
+std::optional<SteppedSineFrfOptions> stepped_sine_options(const Experiment& e, const nlohmann::json& d,
+                                                          const FrfAnalysisOptions& o, std::vector<std::string>& notes) {
+  if (text(d, "kind") != "stepped_sine") return std::nullopt;
+  if (e.r_names.size() != 1 || e.u_names.size() != 1) {
+    notes.push_back("excitation: a stepped sine excites one direction per frequency and cannot separate " +
+                    std::to_string(e.u_names.size()) + " plant inputs from " + std::to_string(e.r_names.size()) +
+                    " references; Welch analysis instead");
+    return std::nullopt;
+  }
+  const auto steps = d.find("steps");
+  const double cycles = number(d, "measure_periods", 0.0);
+  if (steps == d.end() || !steps->is_array() || !(cycles >= 1.0) || cycles != std::floor(cycles)) {
+    notes.push_back("excitation: the stepped-sine description has no usable steps or measure_periods; Welch analysis instead");
+    return std::nullopt;
+  }
+  SteppedSineFrfOptions s;
+  s.sample_time = e.sample_time;
+  s.f_min = o.f_min;
+  s.f_max = o.f_max;
+  for (const auto& step : *steps) {
+    const double start = step.is_object() ? number(step, "measure_start_sample", -1.0) : -1.0;
+    const double length = step.is_object() ? number(step, "measure_samples", 0.0) : 0.0;
+    if (!(start >= 0.0) || !(length >= 2.0)) {
+      notes.push_back("excitation: a stepped-sine step without measure_start_sample / measure_samples; Welch analysis instead");
+      return std::nullopt;
+    }
+    s.steps.push_back({static_cast<Eigen::Index>(start), static_cast<Eigen::Index>(length), static_cast<Eigen::Index>(cycles)});
+  }
+  return s;
+}
+
 void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double confidence) {
   const double factor = report.plant.has_variance() ? confidence_radius_factor(confidence, report.plant.variance_dof) : 0.0;
   for (Eigen::Index i = 0; i < report.plant.rows(); ++i) {
@@ -179,6 +213,15 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.input_from_reference = p.input_from_reference;
     report.blocks = p.blocks;
     if (p.blocks < 2) report.notes.push_back("periodic analysis: one block only; no noise bounds");
+  } else if (const auto stepped = d ? stepped_sine_options(e, *d, o, report.notes) : std::nullopt) {
+    const SteppedSineFrf p = estimate_stepped_sine_frf(r, u, y, *stepped);
+    report.method = "stepped_sine";
+    report.plant = p.plant;
+    report.plant_direct = p.plant_direct;
+    report.output_from_reference = p.output_from_reference;
+    report.input_from_reference = p.input_from_reference;
+    report.blocks = p.plant.lines();
+    report.notes.push_back("stepped sine: one window per frequency; no noise estimate");
   } else {
     WelchFrfOptions w;
     w.sample_time = e.sample_time;

@@ -4,7 +4,9 @@
 // - chooses the estimator from the sidecar's "excitation" description: a multisine (or a
 //   periodic PRBS of one channel) is analysed period-exactly at its lines, blocks of
 //   `hadamard` order for the orthogonal pattern; anything else (random, PRBS shorter than two
-//   periods, chirp, stepped sine, no description) by Welch cross spectra;
+//   periods, chirp, no description) by Welch cross spectra; a stepped sine with one reference
+//   and one plant input step by step (exact DFT of each measurement window), with more
+//   inputs by Welch (one direction per frequency cannot separate them);
 // - the plant FRF of every OUTPUT/INPUT pair (indirect, with noise bounds or coherence), the
 //   direct estimate for comparison, the closed-loop responses;
 // - with a recorded controller: the input sensitivity measured from r -> u, its peak per plant
@@ -53,13 +55,13 @@ struct FittedPair {
 };
 
 struct FrfReport {
-  std::string method;      // "periodic" | "welch"
+  std::string method;      // "periodic" | "stepped_sine" | "welch"
   std::string excitation;  // the sidecar's excitation kind, or "unknown"
   std::vector<std::string> output_names, input_names, reference_names;
   Eigen::VectorXd frequency_hz;
   Frf plant, plant_direct, output_from_reference, input_from_reference;
   std::vector<PlantPair> pairs;  // outputs x inputs, output-major
-  Eigen::Index blocks = 0;       // periodic: blocks averaged; Welch: segments
+  Eigen::Index blocks = 0;       // periodic: blocks averaged; stepped sine: steps; Welch: segments
   std::optional<Frf> sensitivity;                 // input sensitivity S_u
   std::vector<SensitivityPeak> sensitivity_peaks; // one per plant input, then "sigma_max"
   std::optional<ControllerCheck> controller_check;

@@ -43,7 +43,7 @@ std::string complex_text(std::complex<double> z) {
 void print_summary(const ident::FrfReport& r, const std::string& path, const std::string& out, std::size_t plots,
                    double band_top_hz) {
   std::cout << "ambid frf: " << path << ": " << r.method << " estimate (" << r.excitation << " excitation, "
-            << r.blocks << (r.method == "periodic" ? " blocks" : " segments") << "), " << r.frequency_hz.size()
+            << r.blocks << (r.method == "periodic" ? " blocks" : r.method == "welch" ? " segments" : " steps") << "), " << r.frequency_hz.size()
             << " lines " << format_number(r.frequency_hz(0)) << "-"
             << format_number(r.frequency_hz(r.frequency_hz.size() - 1)) << " Hz\n";
   for (const ident::SensitivityPeak& p : r.sensitivity_peaks)

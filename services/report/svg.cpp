@@ -36,27 +36,23 @@ void text(std::ostringstream& svg, double x, double y, const std::string& conten
 void draw_grid_and_ticks(std::ostringstream& svg, const AxesLayout& layout) {
   const double bottom = layout.top + layout.height;
   const double right = layout.left + layout.width;
+  // Grid lines across the plot at the ticks: minor ones lighter, drawn first.
+  const auto grid = [&](const std::vector<double>& x_values, const std::vector<double>& y_values,
+                        const char* extra) {
+    for (const double value : x_values) {
+      const double x = layout.x_scale.to_pixel(value);
+      svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(layout.top) << "\" x2=\""
+          << number(x) << "\" y2=\"" << number(bottom) << "\"" << extra << "/>\n";
+    }
+    for (const double value : y_values) {
+      const double y = layout.y_scale.to_pixel(value);
+      svg << "<line x1=\"" << number(layout.left) << "\" y1=\"" << number(y) << "\" x2=\""
+          << number(right) << "\" y2=\"" << number(y) << "\"" << extra << "/>\n";
+    }
+  };
   svg << "<g class=\"grid\" stroke=\"#e6e6e6\" stroke-width=\"1\">\n";
-  for (const double value : layout.x_ticks.minor) {
-    const double x = layout.x_scale.to_pixel(value);
-    svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(layout.top) << "\" x2=\""
-        << number(x) << "\" y2=\"" << number(bottom) << "\" stroke=\"#f2f2f2\"/>\n";
-  }
-  for (const double value : layout.y_ticks.minor) {
-    const double y = layout.y_scale.to_pixel(value);
-    svg << "<line x1=\"" << number(layout.left) << "\" y1=\"" << number(y) << "\" x2=\""
-        << number(right) << "\" y2=\"" << number(y) << "\" stroke=\"#f2f2f2\"/>\n";
-  }
-  for (const double value : layout.x_ticks.major) {
-    const double x = layout.x_scale.to_pixel(value);
-    svg << "<line x1=\"" << number(x) << "\" y1=\"" << number(layout.top) << "\" x2=\""
-        << number(x) << "\" y2=\"" << number(bottom) << "\"/>\n";
-  }
-  for (const double value : layout.y_ticks.major) {
-    const double y = layout.y_scale.to_pixel(value);
-    svg << "<line x1=\"" << number(layout.left) << "\" y1=\"" << number(y) << "\" x2=\""
-        << number(right) << "\" y2=\"" << number(y) << "\"/>\n";
-  }
+  grid(layout.x_ticks.minor, layout.y_ticks.minor, " stroke=\"#f2f2f2\"");
+  grid(layout.x_ticks.major, layout.y_ticks.major, "");
   svg << "</g>\n<g class=\"tick-labels\">\n";
   for (std::size_t i = 0; i < layout.x_ticks.major.size(); ++i) {
     text(svg, layout.x_scale.to_pixel(layout.x_ticks.major[i]), bottom + 15,

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <cstdio>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -165,6 +167,13 @@ inline double closed_loop_radius(const DiscreteSystem& plant, const StateSpaceCo
   Eigen::MatrixXd A(n + nc, n + nc);
   A << plant.A + plant.B * K.D * plant.C, plant.B * K.C, K.B * plant.C, K.A;
   return A.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// For RecordProperty of small numbers (std::to_string prints 6 decimals only).
+inline std::string scientific(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3e", value);
+  return text;
 }
 
 inline double phase_deg(std::complex<double> z) { return std::arg(z) * 180.0 / kPi; }
