@@ -132,6 +132,19 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   EXPECT_EQ(a["parameter"], "R1");
   EXPECT_DOUBLE_EQ(a["time"].get<double>(), 6.0);  // model files are 1 s apart
   for (const auto& other : d["alerts"]) EXPECT_EQ(other["parameter"], "R1") << other.dump();
+
+  // A model without the uncertainty of a monitored parameter, or of another plant: refused.
+  nlohmann::json m = read_json(files[6]);
+  m["uncertainty"].erase("kw2");
+  write_json(files[6], m);
+  auto bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: estimate window: no uncertainty of kw2"));
+  m["plant_model"] = "lamstf";
+  write_json(files[6], m);
+  bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
 }
 
 TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
