@@ -1,6 +1,8 @@
 // `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
 // Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
-// identified (identifier/amb1dof_deadbeat); a model file is one window. The windows of the
+// identified (identifier/identify_experiment, method deadbeat by default: the seed-000
+// deadbeat realisation, which reports the one-sigma of every parameter); a model file is one
+// window. The windows of the
 // first N inputs form the baseline, learned by the diagnostics engine (its mean and the
 // scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
 // of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the
@@ -26,7 +28,7 @@
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
-#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/identify_experiment.hpp"
 #include "services/cli/commands.hpp"
 #include "services/report/atomic_file.hpp"
 #include "services/report/figure.hpp"
@@ -41,6 +43,7 @@ struct DiagnoseArguments {
   std::vector<std::string> inputs;
   std::size_t baseline = 3;
   double window = 0.25;
+  std::string method = "deadbeat";
   std::string plant_id = "plant";
   std::string out;
 };
@@ -75,7 +78,11 @@ Input model_input(const std::string& file, double start, const std::string& plan
   }
 }
 
-Input experiment_input(const std::string& file, double start, double window, const std::string& plant_id) {
+Input experiment_input(const std::string& file, double start, double window, const std::string& method,
+                       const std::string& plant_id) {
+  ident::IdentifyOptions options;
+  options.method = method;
+  options.validation_fraction = 0.0;  // every sample of a window goes into its estimate
   const Experiment e = read_experiment(file).experiment;
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
@@ -85,8 +92,11 @@ Input experiment_input(const std::string& file, double start, double window, con
     for (std::size_t i = 0; i < parts.size(); ++i) {
       try {
         const double end = start + double(i + 1) * double(samples) * e.sample_time;
-        in.windows.push_back(diag::estimate_window(ident::identify_amb1dof_deadbeat(parts[i]), end, plant_id,
-                                                   diag::Source::replay));
+        const Model m = ident::identify_experiment(parts[i], options);
+        if (!m.uncertainty.count("R1"))
+          throw Error("method '" + method + "' reports no uncertainty of the physical parameters, which the " +
+                      "detection needs (--method deadbeat does)");
+        in.windows.push_back(diag::estimate_window(m.physical, m.uncertainty, end, plant_id, diag::Source::replay));
       } catch (const Error& err) {
         throw Error("window " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + err.what());
       }
@@ -194,7 +204,7 @@ void run(const DiagnoseArguments& a) {
   for (const std::string& file : a.inputs) {
     if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
     inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
-                                         : experiment_input(file, start, a.window, a.plant_id));
+                                         : experiment_input(file, start, a.window, a.method, a.plant_id));
     start = inputs.back().windows.back().time;
   }
   std::size_t baseline_windows = 0;
@@ -227,6 +237,10 @@ void add_diagnose_command(CLI::App& app) {
       ->required();
   cmd->add_option("--baseline", args->baseline, "how many of the first inputs form the baseline")->capture_default_str();
   cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
+      ->capture_default_str();
+  cmd->add_option("--method", args->method,
+                  "identification of each window (identifier/identify_experiment.hpp); it must report the "
+                  "uncertainty of the physical parameters, as deadbeat does")
       ->capture_default_str();
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();

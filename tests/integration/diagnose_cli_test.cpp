@@ -132,6 +132,19 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   EXPECT_EQ(a["parameter"], "R1");
   EXPECT_DOUBLE_EQ(a["time"].get<double>(), 6.0);  // model files are 1 s apart
   for (const auto& other : d["alerts"]) EXPECT_EQ(other["parameter"], "R1") << other.dump();
+
+  // A model without the uncertainty of a monitored parameter, or of another plant: refused.
+  nlohmann::json m = read_json(files[6]);
+  m["uncertainty"].erase("kw2");
+  write_json(files[6], m);
+  auto bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: estimate window: no uncertainty of kw2"));
+  m["plant_model"] = "lamstf";
+  write_json(files[6], m);
+  bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
+  EXPECT_NE(bad.status, 0);
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
 }
 
 TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
@@ -155,13 +168,18 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     EXPECT_THAT(r.output, HasSubstr("the baseline needs at least 5"));
   }
   {
+    const auto r = run_ambid("diagnose" + joined(files) + " --method okid" + out);
+    EXPECT_NE(r.status, 0);
+    EXPECT_THAT(r.output, HasSubstr("method 'okid' reports no uncertainty"));
+  }
+  {
     nlohmann::json sidecar = read_json(files[4]);
     sidecar["plant"]["model"] = "lamstf";
     write_json(files[4], sidecar);
     const auto r = run_ambid("diagnose" + joined(files) + out);
     EXPECT_NE(r.status, 0);
     EXPECT_THAT(r.output, HasSubstr("hot5.json"));
-    EXPECT_THAT(r.output, HasSubstr("plant.model is 'lamstf'"));
+    EXPECT_THAT(r.output, HasSubstr("got 'lamstf'"));
   }
   {
     nlohmann::json sidecar = read_json(files[3]);
