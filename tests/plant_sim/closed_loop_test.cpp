@@ -108,6 +108,18 @@ TEST(ClosedLoop, Amb1dofRecordingReplaysThroughItsController) {
   EXPECT_LT(replay_error(e), 1e-12);
 }
 
+// A plant error inside the loop surfaces with the time it happened: 100 V on coil 1 pulls the
+// rotor into the bearing within milliseconds.
+TEST(ClosedLoop, TouchdownNamesTheTime) {
+  ScenarioOptions o;
+  o.duration = 0.05;
+  Scenario s = build_scenario(o);
+  s.options.excitation.col(0).setConstant(100.0);
+  EXPECT_THAT([&] { run_closed_loop(*s.truth, s.header, s.options); },
+              ::testing::ThrowsMessage<Error>(
+                  ::testing::AllOf(HasSubstr("closed loop: at t = 0.00"), HasSubstr("rotor touched the bearing"))));
+}
+
 TEST(ClosedLoop, SeedReproducesNoiseExactly) {
   RotorLoop loop;
   ClosedLoopOptions options;
