@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "identifier/frf_welch.hpp"
 
 namespace ambid::diagnostics {
 namespace {
@@ -15,6 +16,21 @@ struct Candidate {
 };
 
 double total(const Eigen::VectorXd& per_output) { return per_output.mean(); }
+
+// T_yr of outputs `y` (deviations) on the validation segment; empty when it is too short.
+ident::Frf loop_frf(const Eigen::MatrixXd& y, const Experiment& measured, const Segment& validation) {
+  ident::WelchFrfOptions o;
+  o.sample_time = measured.sample_time;
+  o.segment_samples = std::min<Eigen::Index>(1024, validation.size() / 3);
+  try {
+    return ident::estimate_welch_frf(measured.r_deviation().middleRows(validation.begin, validation.size()),
+                                     measured.u_deviation().middleRows(validation.begin, validation.size()),
+                                     y.middleRows(validation.begin, validation.size()), o)
+        .output_from_reference;
+  } catch (const Error&) {
+    return {};
+  }
+}
 
 // The strongest line over the outputs' residuals, each normalised by its measured spread.
 Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measured, double dt, double f_lo,
@@ -146,6 +162,9 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);
   r.residual_extended =
       welch_spectrum((r.measured - r.extended).middleRows(r.validation.begin, r.validation.size()), dt, L);
+  r.loop_measured = loop_frf(r.measured, measured, r.validation);
+  r.loop_nominal = loop_frf(r.nominal, measured, r.validation);
+  r.loop_extended = loop_frf(r.extended, measured, r.validation);
   return r;
 }
 

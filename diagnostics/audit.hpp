@@ -22,6 +22,7 @@
 #include "diagnostics/audit_fit.hpp"
 #include "diagnostics/audit_replay.hpp"
 #include "diagnostics/audit_spectrum.hpp"
+#include "identifier/frf_types.hpp"
 #include "plant_sim/effects.hpp"
 
 namespace ambid::diagnostics {
@@ -57,6 +58,9 @@ struct AuditResult {
   Eigen::MatrixXd measured, nominal, extended;
   Spectrum residual_nominal, residual_extended;
   Eigen::MatrixXd excitation_correlation;
+  // Closed-loop FRFs y/r (Welch, validation segment) of the measurement and of the replayed
+  // nominal and extended models; empty when the segment is too short for them.
+  ident::Frf loop_measured, loop_nominal, loop_extended;
   std::vector<sim::Effect> extended_effects;  // the accepted effect, or empty
 };
 

@@ -64,6 +64,35 @@ report::Figure residual_spectra(const diagnostics::AuditResult& r) {
   return fig;
 }
 
+// |x/r1| and its phase for the measurement and the models (closed loop, validation segment).
+report::Figure loop_bode(const diagnostics::AuditResult& r) {
+  report::Figure fig;
+  fig.title = "Closed loop " + r.outputs.front() + "/r1: measured, nominal and extended model";
+  fig.share_x = true;
+  report::Axes magnitude, phase;
+  magnitude.log_x = phase.log_x = true;
+  magnitude.y_label = "|x/r1| [dB]";
+  phase.y_label = "phase [deg]";
+  phase.x_label = "f [Hz]";
+  auto add = [&](const ident::Frf& frf, const std::string& label, bool as_markers) {
+    if (frf.lines() == 0) return;
+    const Eigen::VectorXcd g = frf.element(0, 0);
+    std::vector<double> db, deg;
+    for (const auto& v : g) {
+      db.push_back(20 * std::log10(std::abs(v)));
+      deg.push_back(std::arg(v) * 180.0 / 3.141592653589793);
+    }
+    const std::vector<double> f = to_vector(frf.frequency_hz);
+    magnitude.series.push_back(as_markers ? report::markers(label, f, db) : report::line(label, f, db));
+    phase.series.push_back(as_markers ? report::markers(label, f, deg) : report::line(label, f, deg));
+  };
+  add(r.loop_measured, "measured", true);
+  add(r.loop_nominal, "nominal model", false);
+  if (!r.extended_effects.empty()) add(r.loop_extended, "extended model", false);
+  fig.axes = {magnitude, phase};
+  return fig;
+}
+
 }  // namespace
 
 std::string audit_verdict(const diagnostics::AuditResult& r) {
@@ -119,6 +148,10 @@ std::string audit_report_html(const diagnostics::AuditResult& r, const std::stri
   }
   h << "</table>\n<h2>Time traces</h2>\n" << inline_svg(time_traces(r));
   h << "\n<h2>Residual spectra</h2>\n" << inline_svg(residual_spectra(r));
+  if (r.loop_measured.lines() > 0)
+    h << "\n<h2>Closed-loop frequency response</h2>\n" << inline_svg(loop_bode(r));
+  else
+    h << "\n<p>The validation segment is too short for closed-loop frequency responses.</p>";
   h << "\n</body></html>\n";
   return h.str();
 }

@@ -104,6 +104,7 @@ TEST(AuditCli, NamesTheHiddenEffectAndWritesItsFiles) {
   const std::string page((std::istreambuf_iterator<char>(html)), std::istreambuf_iterator<char>());
   EXPECT_THAT(page, HasSubstr("<svg"));
   EXPECT_THAT(page, HasSubstr("Residual spectra"));
+  EXPECT_THAT(page, HasSubstr("Closed-loop frequency response"));
 }
 
 TEST(AuditCli, RefusesWhatItCannotAudit) {
