@@ -7,6 +7,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "core/experiment_io.hpp"
@@ -87,6 +89,33 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 2"));
+}
+
+// The frf daemon runs a multisine experiment through the plant daemon. The plant is open-loop
+// unstable, so by Bode's sensitivity integral every input-sensitivity peak exceeds 1.
+TEST(Stack, FrfDaemonPublishesSensitivityPeaksAndZone) {
+  Stack stack("stack_frf", 178);
+  std::ofstream(stack.dir() / "frf.json") << R"({"scenario": ")" << AMBID_SOURCE_DIR
+                                          << R"(/deploy/config/nominal-bearing.json", "f_min": 1, "f_max": 1000})";
+  stack.start("plant");
+  stack.start("frf");
+  std::this_thread::sleep_for(std::chrono::seconds(6));
+  const CommandResult status = stack.ambid("status --wait 2");
+  ASSERT_THAT(status.output, HasSubstr("frequency response at plant time")) << status.output << stack.log("frf");
+  EXPECT_THAT(status.output, HasSubstr("ISO 14839-3 zone"));
+  EXPECT_THAT(stack.log("plant"), HasSubstr("excitation multisine accepted"));
+  EXPECT_THAT(stack.log("plant"), HasSubstr("excitation prbs accepted"));
+  std::istringstream lines(status.output);
+  int peaks = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto at = line.find("sensitivity peak ");
+    if (at == std::string::npos) continue;
+    ++peaks;
+    const double magnitude = std::stod(line.substr(line.find(": ", at) + 2));
+    EXPECT_GT(magnitude, 1.0) << line;
+    EXPECT_LT(magnitude, 10.0) << line;
+  }
+  EXPECT_EQ(peaks, 3) << status.output;  // u1, u2, sigma_max
 }
 
 // `ambid record` writes an experiment file from the bus that the reader accepts; its samples
