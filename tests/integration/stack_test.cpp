@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "core/experiment_io.hpp"
+#include "diagnostics/trend_store.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -63,17 +64,29 @@ TEST(Stack, DaemonsSplitAcrossVendorsTheOtherWay) {
 }
 
 // The identifier dies (SIGKILL) mid-run: the operator sees STALE, then OK once it is back.
-TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOk) {
+TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   Stack stack("stack_restart", 173);
   start_all(stack);
   std::this_thread::sleep_for(std::chrono::seconds(4));
   stack.kill("identifier");
   const CommandResult stale = stack.ambid("alerts --until STALE:R1 --timeout 20");
   ASSERT_EQ(stale.status, 0) << stale.output << stack.log("diagnostics");
+  const auto before = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(before.size(), 10u);  // the baseline was learned
   stack.start("identifier");
   const CommandResult ok = stack.ambid("alerts --until OK:R1 --timeout 20");
   ASSERT_EQ(ok.status, 0) << ok.output << stack.log("diagnostics");
   EXPECT_THAT(ok.output, HasSubstr("estimates resumed"));
+  // The trend history is intact: what was stored before the restart is still there, unchanged,
+  // followed by the new estimates (nominal R1 17.5 ohm within 1 %).
+  const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(after.size(), before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    EXPECT_EQ(after[k].time, before[k].time);
+    EXPECT_EQ(after[k].value, before[k].value);
+  }
+  for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
+  EXPECT_NEAR(after.back().value, 17.5, 0.175);
 }
 
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
