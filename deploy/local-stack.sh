@@ -34,7 +34,9 @@ case "$action" in
   stop)
     for daemon in plant identifier diagnostics; do
       if [[ -f $rundir/$daemon.pid ]]; then
-        kill "$(cat "$rundir/$daemon.pid")" 2>/dev/null || true
+        pid=$(cat "$rundir/$daemon.pid")
+        kill "$pid" 2>/dev/null || true
+        for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done  # up to 5 s
         rm -f "$rundir/$daemon.pid"
       fi
     done

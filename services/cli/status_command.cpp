@@ -24,11 +24,14 @@ void run(const StatusArguments& args) {
   auto sources = bus->reader<bus::PlantSourceState>();
   std::map<std::string, bus::Health> nodes;
   std::map<std::string, bus::PlantSourceState> plants;
+  auto responses = bus->reader<bus::FrequencyResponse>();
+  std::map<std::string, bus::FrequencyResponse> frfs;
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.wait);
   while (std::chrono::steady_clock::now() < end) {
     bus->wait(std::chrono::milliseconds(100));
     for (const auto& h : health->take()) nodes[h.node] = h;
     for (const auto& s : sources->take()) plants[s.plant_id] = s;
+    for (const auto& r : responses->take()) frfs[r.plant_id] = r;
   }
   if (nodes.empty() && plants.empty()) {
     std::cout << "no daemon answered on domain " << args.bus.domain << " within " << args.wait << " s" << std::endl;
@@ -37,6 +40,14 @@ void run(const StatusArguments& args) {
   for (const auto& [id, s] : plants)
     std::cout << "plant " << id << ": source " << daemons::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
               << " s" << (s.command_accepted ? "" : " (last command refused: " + s.message + ")") << "\n";
+  constexpr const char* zones = "-ABCD";
+  for (const auto& [id, r] : frfs) {
+    std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, "
+              << r.frequencies.size() << " lines, ISO 14839-3 zone " << zones[int(r.zone)] << "\n";
+    for (const auto& p : r.peaks)
+      std::cout << "  sensitivity peak " << p.output << ": " << p.magnitude << " at " << p.frequency << " Hz, zone "
+                << zones[int(p.zone)] << "\n";
+  }
   for (const auto& [node, h] : nodes)
     std::cout << node << " (" << h.role << "): " << daemons::level_name(h.level) << " " << h.message << ", received "
               << h.received << ", published " << h.published << ", rejected " << h.errors << ", up " << h.time

@@ -1,10 +1,11 @@
-// `ambid daemon plant|identifier|diagnostics`: the daemons as subcommands of the one `ambid`
+// `ambid daemon plant|identifier|diagnostics|frf`: the daemons as subcommands of the one `ambid`
 // binary (services/daemons/README.md says why).
 #include <memory>
 
 #include "services/cli/commands.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/diagnostics_daemon.hpp"
+#include "services/daemons/frf_daemon.hpp"
 #include "services/daemons/identifier_daemon.hpp"
 #include "services/daemons/plant_daemon.hpp"
 
@@ -31,6 +32,8 @@ void add_daemon_commands(CLI::App& app) {
              daemons::run_identifier_daemon);
   add_daemon(*daemon, "diagnostics", "identified models -> trend store -> alerts (STALE when silent)",
              daemons::run_diagnostics_daemon);
+  add_daemon(*daemon, "frf", "excitation experiment through the plant -> frequency response, ISO zone",
+             daemons::run_frf_daemon);
 }
 
 }  // namespace ambid::cli

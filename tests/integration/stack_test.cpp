@@ -7,9 +7,12 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "core/experiment_io.hpp"
+#include "diagnostics/trend_store.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -61,17 +64,29 @@ TEST(Stack, DaemonsSplitAcrossVendorsTheOtherWay) {
 }
 
 // The identifier dies (SIGKILL) mid-run: the operator sees STALE, then OK once it is back.
-TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOk) {
+TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   Stack stack("stack_restart", 173);
   start_all(stack);
   std::this_thread::sleep_for(std::chrono::seconds(4));
   stack.kill("identifier");
   const CommandResult stale = stack.ambid("alerts --until STALE:R1 --timeout 20");
   ASSERT_EQ(stale.status, 0) << stale.output << stack.log("diagnostics");
+  const auto before = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(before.size(), 10u);  // the baseline was learned
   stack.start("identifier");
   const CommandResult ok = stack.ambid("alerts --until OK:R1 --timeout 20");
   ASSERT_EQ(ok.status, 0) << ok.output << stack.log("diagnostics");
   EXPECT_THAT(ok.output, HasSubstr("estimates resumed"));
+  // The trend history is intact: what was stored before the restart is still there, unchanged,
+  // followed by the new estimates (nominal R1 17.5 ohm within 1 %).
+  const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(after.size(), before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    EXPECT_EQ(after[k].time, before[k].time);
+    EXPECT_EQ(after[k].value, before[k].value);
+  }
+  for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
+  EXPECT_NEAR(after.back().value, 17.5, 0.175);
 }
 
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
@@ -87,6 +102,33 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 2"));
+}
+
+// The frf daemon runs a multisine experiment through the plant daemon. The plant is open-loop
+// unstable, so by Bode's sensitivity integral every input-sensitivity peak exceeds 1.
+TEST(Stack, FrfDaemonPublishesSensitivityPeaksAndZone) {
+  Stack stack("stack_frf", 178);
+  std::ofstream(stack.dir() / "frf.json") << R"({"scenario": ")" << AMBID_SOURCE_DIR
+                                          << R"(/deploy/config/nominal-bearing.json", "f_min": 1, "f_max": 1000})";
+  stack.start("plant");
+  stack.start("frf");
+  std::this_thread::sleep_for(std::chrono::seconds(6));
+  const CommandResult status = stack.ambid("status --wait 2");
+  ASSERT_THAT(status.output, HasSubstr("frequency response at plant time")) << status.output << stack.log("frf");
+  EXPECT_THAT(status.output, HasSubstr("ISO 14839-3 zone"));
+  EXPECT_THAT(stack.log("plant"), HasSubstr("excitation multisine accepted"));
+  EXPECT_THAT(stack.log("plant"), HasSubstr("excitation prbs accepted"));
+  std::istringstream lines(status.output);
+  int peaks = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const auto at = line.find("sensitivity peak ");
+    if (at == std::string::npos) continue;
+    ++peaks;
+    const double magnitude = std::stod(line.substr(line.find(": ", at) + 2));
+    EXPECT_GT(magnitude, 1.0) << line;
+    EXPECT_LT(magnitude, 10.0) << line;
+  }
+  EXPECT_EQ(peaks, 3) << status.output;  // u1, u2, sigma_max
 }
 
 // `ambid record` writes an experiment file from the bus that the reader accepts; its samples
