@@ -8,10 +8,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
+  libsystemd-dev prometheus-cpp-dev
   iproute2 procps libxml2-utils
   chromium  # headless rendering test of the HTML audit report
-  libsystemd-dev prometheus-cpp-dev
-  iproute2 procps
 )
 
 missing=()
