@@ -246,7 +246,7 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
   fill_pairs(report, coherence, o.confidence);
 
   if (e.controller) {
-    const LoopSignals signals{e.y_names, e.u_names, e.r_names};
+    const LoopSignalNames signals{e.y_names, e.u_names, e.r_names};
     try {
       report.sensitivity = input_sensitivity_from_reference(report.input_from_reference, *e.controller, signals);
       report.sensitivity_peaks = sensitivity_peaks(*report.sensitivity, e.u_names, o.iso);

@@ -16,7 +16,7 @@ Eigen::Index index_of(const std::vector<std::string>& names, const std::string& 
 
 }  // namespace
 
-LoopResponse loop_response(const StateSpaceController& controller, const LoopSignals& signals, double omega) {
+LoopResponse loop_response(const StateSpaceController& controller, const LoopSignalNames& signals, double omega) {
   const auto ny = static_cast<Eigen::Index>(signals.y.size());
   const auto nu = static_cast<Eigen::Index>(signals.u.size());
   const auto nr = static_cast<Eigen::Index>(signals.r.size());

@@ -17,7 +17,7 @@
 namespace ambid::ident {
 
 // Names of the signals of the loop, in the column order of the data (Experiment y/u/r names).
-struct LoopSignals {
+struct LoopSignalNames {
   std::vector<std::string> y, u, r;
 };
 
@@ -29,6 +29,6 @@ struct LoopResponse {
 // Throws Error when a controller input or output is not a signal of the loop, the number of
 // references differs from the number of controller outputs (reference j is added to output j),
 // or I - P Ku is singular at w (names the frequency).
-LoopResponse loop_response(const StateSpaceController& controller, const LoopSignals& signals, double omega);
+LoopResponse loop_response(const StateSpaceController& controller, const LoopSignalNames& signals, double omega);
 
 }  // namespace ambid::ident

@@ -38,7 +38,7 @@ Eigen::MatrixXcd open_loop_from_closed_loop(const Eigen::MatrixXcd& T, const Eig
   return right_solve(T, X);
 }
 
-Frf open_loop_from_closed_loop(const Frf& Tyr, const StateSpaceController& controller, const LoopSignals& signals) {
+Frf open_loop_from_closed_loop(const Frf& Tyr, const StateSpaceController& controller, const LoopSignalNames& signals) {
   Tyr.validate();
   Frf out;
   out.frequency_hz = Tyr.frequency_hz;
@@ -84,7 +84,7 @@ Eigen::MatrixXcd controller_from_responses(const Eigen::MatrixXcd& G, const Eige
 }
 
 ControllerCheck check_controller(const Frf& plant, const Frf& Tyr, const StateSpaceController& controller,
-                                 const LoopSignals& signals) {
+                                 const LoopSignalNames& signals) {
   plant.validate();
   Tyr.validate();
   require_same_lines(plant, Tyr, "controller check");

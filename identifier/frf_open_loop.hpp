@@ -26,7 +26,7 @@ Eigen::MatrixXcd open_loop_from_closed_loop(const Eigen::MatrixXcd& closed_loop,
 // propagated to first order, dG = (I - G K) dT (I + K T)^-1, treating the errors of the
 // elements of T as uncorrelated.
 Frf open_loop_from_closed_loop(const Frf& output_from_reference, const StateSpaceController& controller,
-                               const LoopSignals& signals);
+                               const LoopSignalNames& signals);
 
 // Eq. 5 at one frequency: the controller consistent with the open-loop G and the closed-loop
 // T (from d to y). Square G only (Error otherwise); InsufficientData when G or T is singular.
@@ -44,6 +44,6 @@ struct ControllerCheck {
   Eigen::VectorXd relative_error;          // sigma_max(L_meas - L_known) / sigma_max(L_known)
 };
 ControllerCheck check_controller(const Frf& plant, const Frf& output_from_reference,
-                                 const StateSpaceController& controller, const LoopSignals& signals);
+                                 const StateSpaceController& controller, const LoopSignalNames& signals);
 
 }  // namespace ambid::ident

@@ -52,7 +52,7 @@ Eigen::MatrixXcd output_sensitivity(const Eigen::MatrixXcd& G, const Eigen::Matr
   return inverse_of(Eigen::MatrixXcd::Identity(G.rows(), G.rows()) - G * K, "output sensitivity: I - G K");
 }
 
-Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, const LoopSignals& signals) {
+Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, const LoopSignalNames& signals) {
   plant.validate();
   Frf out;
   out.frequency_hz = plant.frequency_hz;
@@ -68,7 +68,7 @@ Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, 
   return out;
 }
 
-Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& controller, const LoopSignals& signals,
+Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& controller, const LoopSignalNames& signals,
                       const Eigen::VectorXd& frequency_hz) {
   if (std::abs(plant.sample_time - controller.sample_time) > 1e-9 * plant.sample_time)
     throw Error("input sensitivity: plant sample time " + std::to_string(plant.sample_time) +
@@ -76,7 +76,7 @@ Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& c
   return input_sensitivity(freq_response(plant, frequency_hz), controller, signals);
 }
 
-Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController& controller, const LoopSignals& signals) {
+Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController& controller, const LoopSignalNames& signals) {
   Tur.validate();
   Frf out;
   out.frequency_hz = Tur.frequency_hz;

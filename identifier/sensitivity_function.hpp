@@ -24,14 +24,14 @@ Eigen::MatrixXcd input_sensitivity(const Eigen::MatrixXcd& G, const Eigen::Matri
 Eigen::MatrixXcd output_sensitivity(const Eigen::MatrixXcd& G, const Eigen::MatrixXcd& K);
 
 // S_u from a plant FRF (outputs x inputs) and the recorded controller, line by line.
-Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, const LoopSignals& signals);
+Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, const LoopSignalNames& signals);
 // S_u from a discrete plant model and the recorded controller on a frequency grid (Hz).
 Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& controller,
-                      const LoopSignals& signals, const Eigen::VectorXd& frequency_hz);
+                      const LoopSignalNames& signals, const Eigen::VectorXd& frequency_hz);
 // S_u measured: T_ur M^+ from the response of the plant inputs to the references (variance
 // carried over when M is the identity, as when r is added to the controller output).
 Frf input_sensitivity_from_reference(const Frf& input_from_reference, const StateSpaceController& controller,
-                                     const LoopSignals& signals);
+                                     const LoopSignalNames& signals);
 
 // The peak of one loop over the lines of an FRF (the largest value on the grid: the grid must
 // resolve the peak) and its ISO 14839-3 zone.

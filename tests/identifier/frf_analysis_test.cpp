@@ -96,7 +96,7 @@ TEST_F(BearingMultisine, SensitivityPeaksAndControllerCheck) {
   EXPECT_EQ(report->sensitivity_peaks[0].loop, "u1");
   EXPECT_EQ(report->sensitivity_peaks[2].loop, "sigma_max");
   // The model's sensitivity on the same lines.
-  const LoopSignals signals{experiment->y_names, experiment->u_names, experiment->r_names};
+  const LoopSignalNames signals{experiment->y_names, experiment->u_names, experiment->r_names};
   const Frf S0 = input_sensitivity(linear_bearing(experiment->sample_time), *experiment->controller, signals,
                                    report->frequency_hz);
   const auto model_peaks = sensitivity_peaks(S0, experiment->u_names);

@@ -158,7 +158,7 @@ TEST_F(SalesRotorLoop, RefusesTooShortRecordsAndBadLines) {
 struct TwoAxis {
   DiscreteSystem plant;
   StateSpaceController controller;
-  LoopSignals signals{{"y1", "y2"}, {"u1", "u2"}, {"r1", "r2"}};
+  LoopSignalNames signals{{"y1", "y2"}, {"u1", "u2"}, {"r1", "r2"}};
 };
 
 TwoAxis two_axis() {

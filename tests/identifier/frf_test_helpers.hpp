@@ -66,7 +66,7 @@ inline std::complex<double> sales_pd_zoh(std::complex<double> z, double T, doubl
   return -(kp + kd / tau) + (kd / tau) * (1.0 - e) / (z - e);
 }
 
-inline LoopSignals sales_signals() { return LoopSignals{{"y"}, {"u"}, {"r"}}; }
+inline LoopSignalNames sales_signals() { return LoopSignalNames{{"y"}, {"u"}, {"r"}}; }
 
 // n samples of seeded white Gaussian noise of the given std, one column.
 inline Eigen::MatrixXd gaussian(Eigen::Index n, double std, std::uint64_t seed) {
@@ -121,7 +121,7 @@ struct LoopData {
 // with the given standard deviations; y is what the controller receives and what is recorded),
 // controller from the contract (its inputs name signals of `signals`), u = uf + r. The plant
 // must have D = 0.
-inline LoopData simulate_loop(const DiscreteSystem& plant, const StateSpaceController& K, const LoopSignals& signals,
+inline LoopData simulate_loop(const DiscreteSystem& plant, const StateSpaceController& K, const LoopSignalNames& signals,
                               const Eigen::MatrixXd& r, double y_noise_std = 0.0, double u_noise_std = 0.0,
                               std::uint64_t seed = 1) {
   const Eigen::Index N = r.rows(), ny = plant.outputs(), nu = plant.inputs();

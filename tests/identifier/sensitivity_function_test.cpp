@@ -54,14 +54,14 @@ TEST(SensitivityFunction, ControllerReadingThePlantInputIsFoldedIn) {
   c.B = (Eigen::MatrixXd(1, 2) << 0.2, 0.0).finished();  // the state integrates u (one sample late)
   c.C = Eigen::MatrixXd::Constant(1, 1, 1.0);
   c.D = (Eigen::MatrixXd(1, 2) << 0.0, -3.0).finished();  // zero in the u column
-  const LoopSignals sig{{"y"}, {"u"}, {"r"}};
+  const LoopSignalNames sig{{"y"}, {"u"}, {"r"}};
   const double w = 2.0 * kPi * 50.0;
   const std::complex<double> z = std::polar(1.0, w * 1e-3);
   const std::complex<double> Ku = 0.2 / (z - 0.5), Ky = -3.0;
   const LoopResponse loop = loop_response(c, sig, w);
   EXPECT_LT(std::abs(loop.K(0, 0) - Ky / (1.0 - Ku)), 1e-12);
   EXPECT_LT(std::abs(loop.M(0, 0) - 1.0 / (1.0 - Ku)), 1e-12);
-  LoopSignals wrong = sig;
+  LoopSignalNames wrong = sig;
   wrong.y = {"x"};
   EXPECT_THROW(loop_response(c, wrong, w), Error);
 }

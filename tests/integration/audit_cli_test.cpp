@@ -4,16 +4,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "cli_run.hpp"
 #include "core/experiment_io.hpp"
 
 namespace ambid {
@@ -22,28 +19,9 @@ namespace {
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-CommandResult run(const std::string& command) {
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string output;
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
-
-CommandResult run_ambid(const std::string& args) { return run(std::string(AMBID_BINARY) + " " + args); }
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::path(AMBID_BINARY_DIR) / "test-output" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using cli_test::CommandResult;
+using cli_test::fresh_dir;
+using cli_test::run_ambid;
 
 nlohmann::json read_json(const fs::path& path) {
   std::ifstream in(path);
@@ -117,7 +95,7 @@ TEST(AuditCli, RefusesWhatItCannotAudit) {
 
 // The screenshot of the report must carry far more than that of an empty page of the same size.
 TEST(AuditCli, ReportRendersInHeadlessChromium) {
-  if (run("command -v chromium").status != 0) FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
+  if (cli_test::run_command("command -v chromium").status != 0) FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
   const fs::path dir = fresh_dir("audit_chromium");
   ASSERT_EQ(run_ambid("sim" + kNoisy + " --effect harmonic_disturbance --set f=90 --set Fc=0.3 --out " +
                       (dir / "run").string()).status, 0);
@@ -125,7 +103,7 @@ TEST(AuditCli, ReportRendersInHeadlessChromium) {
   std::ofstream(dir / "empty.html") << "<!DOCTYPE html><html><body></body></html>\n";
   auto screenshot = [&](const fs::path& page, const fs::path& png) {
     const fs::path profile = dir / ("profile-" + png.stem().string());
-    const CommandResult r = run("timeout 120 chromium --headless --no-sandbox --disable-gpu "
+    const CommandResult r = cli_test::run_command("timeout 120 chromium --headless --no-sandbox --disable-gpu "
                                 "--disable-background-networking --disable-component-update --disable-sync "
                                 "--no-first-run --user-data-dir=" + profile.string() + " --screenshot=" +
                                 png.string() + " --window-size=1200,2400 file://" + page.string());

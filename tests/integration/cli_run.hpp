@@ -10,6 +10,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr
 };
 
+// Runs a shell command line and collects its output (stdout and stderr) and exit status.
+CommandResult run_command(const std::string& command);
+
 // Runs `ambid ARGS` (a shell command line) and collects its output and exit status.
 CommandResult run_ambid(const std::string& args);
 

@@ -8,15 +8,16 @@
 
 namespace ambid::cli_test {
 
-CommandResult run_ambid(const std::string& args) {
-  const std::string command = std::string(AMBID_BINARY) + " " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
+CommandResult run_command(const std::string& command) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   std::string output;
   std::array<char, 4096> buffer{};
   while (std::fgets(buffer.data(), int(buffer.size()), pipe)) output += buffer.data();
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
+
+CommandResult run_ambid(const std::string& args) { return run_command(std::string(AMBID_BINARY) + " " + args); }
 
 std::filesystem::path fresh_dir(const std::string& name) {
   const std::filesystem::path dir = std::filesystem::path(AMBID_BINARY_DIR) / "test-output" / name;

@@ -9,15 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "cli_run.hpp"
+
 namespace ambid::testing {
 
-struct CommandResult {
-  int status;          // exit code, -1 when killed
-  std::string output;  // stdout and stderr
-};
-
-// Runs `ambid ARGS` to completion.
-CommandResult run_ambid(const std::string& args);
+using cli_test::CommandResult;
+using cli_test::run_ambid;
 
 // The body of http://127.0.0.1:PORT/PATH (empty when nothing answers).
 std::string http_get(int port, const std::string& path);
