@@ -65,8 +65,10 @@ class SimulatedStep : public ::testing::TestWithParam<StepCase> {};
 // learned baselines:
 //   R1 +20 % -> R1 +9.9 % (WARN, not ERROR), R2 -9.5 %, ks -6.5 %, kr1 = kr2 -3.1 % (air_gap)
 //   kw1 +20 % -> kw1 +20 % ERROR (right), but R1, R2 +19..20 %, kr1, kr2 +26 %, ks +34 %
-// so other faults are named. The diagnostics do what the estimates say; re-enable (remove
-// DISABLED_) once the identification of a faulty plant is unbiased.
+// so other faults are named. With closed-loop (now used here, no sigmas: the baseline scatter
+// is sigma_eff) it still fails on 0.25 s windows: R1 +20 % gives coil 1 but also force_factor
+// / air_gap alerts (the noise scatter of kr, ks on 0.25 s windows); longer windows not yet
+// tried. Re-enable once they pass.
 TEST_P(SimulatedStep, DISABLED_ErrorNamesTheFaultWithinAFewWindows) {
   const StepCase c = GetParam();
   testing::SimulatedBearing bearing;
