@@ -67,8 +67,10 @@ class SimulatedStep : public ::testing::TestWithParam<StepCase> {};
 //   kw1 +20 % -> kw1 +20 % ERROR (right), but R1, R2 +19..20 %, kr1, kr2 +26 %, ks +34 %
 // so other faults are named. With closed-loop (now used here, no sigmas: the baseline scatter
 // is sigma_eff) it still fails on 0.25 s windows: R1 +20 % gives coil 1 but also force_factor
-// / air_gap alerts (the noise scatter of kr, ks on 0.25 s windows); longer windows not yet
-// tried. Re-enable once they pass.
+// / air_gap alerts, and also on 1 s windows: R1 +20 % -> R1 +22 % ERROR (right) but ks -8.2 %,
+// kr1 = kr2 -3.5 % (air_gap WARN). Not yet known whether the linearised ks, kr of the faulty
+// operating point truly move (the coil currents shift) or the identification is biased;
+// re-enable once that is settled.
 TEST_P(SimulatedStep, DISABLED_ErrorNamesTheFaultWithinAFewWindows) {
   const StepCase c = GetParam();
   testing::SimulatedBearing bearing;
