@@ -63,8 +63,8 @@ Baseline learn_baseline(std::span<const double> values, std::span<const double> 
                            " windows, got " + std::to_string(values.size()));
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (!std::isfinite(values[i])) throw Error("baseline: value " + std::to_string(i) + " is not finite");
-    if (!(sigmas[i] > 0.0) || !std::isfinite(sigmas[i]))
-      throw Error("baseline: sigma " + std::to_string(i) + " must be positive and finite, got " +
+    if (!(sigmas[i] >= 0.0) || !std::isfinite(sigmas[i]))
+      throw Error("baseline: sigma " + std::to_string(i) + " must be non-negative and finite, got " +
                   std::to_string(sigmas[i]));
   }
   const double n = static_cast<double>(values.size());
@@ -79,6 +79,13 @@ Baseline learn_baseline(std::span<const double> values, std::span<const double> 
   for (double v : values) abs_dev.push_back(std::abs(v - med));
   const double observed = 1.4826 * median(abs_dev);
   b.reported_sigma = median({sigmas.begin(), sigmas.end()});
+  if (b.reported_sigma == 0.0 && values.size() < kMinSpreadLearningWindows)
+    throw InsufficientData("baseline: the estimates report no sigma, so the scatter of the windows is the whole "
+                           "sigma_eff; learning it needs at least " + std::to_string(kMinSpreadLearningWindows) +
+                           " windows, got " + std::to_string(values.size()));
+  if (b.reported_sigma == 0.0 && !(observed > 0.0))
+    throw InsufficientData("baseline: the estimates report no sigma and the " + std::to_string(values.size()) +
+                           " windows do not scatter (median absolute deviation 0): no sigma_eff can be learned");
   b.extra_spread = std::sqrt(std::max(0.0, observed * observed - b.reported_sigma * b.reported_sigma));
   b.mean_sigma = std::max(observed, b.reported_sigma) / std::sqrt(n);
   b.validate();

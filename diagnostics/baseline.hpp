@@ -13,6 +13,10 @@
 //   mean_sigma     max(observed, reported_sigma) / sqrt(N), the standard error of the mean
 // and then sigma_eff = sqrt(sigma^2 + tau^2) for an estimate reporting sigma: the reported
 // uncertainty of that window, widened by the scatter it does not account for.
+// Without identifier sigmas (sigma = 0, e.g. the closed-loop method reports none):
+// reported_sigma = 0, tau = observed, and sigma_eff = observed is the whole uncertainty, the
+// window-to-window scatter of the baseline; that needs kMinSpreadLearningWindows windows and a
+// non-zero scatter.
 // Given explicitly (a data sheet, a commissioning measurement): the mean and optionally tau,
 // with mean_sigma = 0.
 #include <cstddef>
@@ -45,10 +49,12 @@ struct Baseline {
 Baseline given_baseline(double mean, double extra_spread = 0.0);
 
 constexpr std::size_t kMinLearningWindows = 5;
+constexpr std::size_t kMinSpreadLearningWindows = 6;  // when no window reports a sigma
 
 // Learns from values[i] with reported sigmas[i]. Throws InsufficientData for fewer than
-// kMinLearningWindows windows and Error for unequal lengths, a non-finite value, a sigma
-// that is not positive, or a zero mean.
+// kMinLearningWindows windows (kMinSpreadLearningWindows, or no scatter at all, when the median
+// reported sigma is 0) and Error for unequal lengths, a non-finite value, a negative sigma, or
+// a zero mean.
 Baseline learn_baseline(std::span<const double> values, std::span<const double> sigmas);
 
 }  // namespace ambid::diag

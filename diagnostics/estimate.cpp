@@ -33,8 +33,8 @@ void EstimateWindow::validate() const {
     if (!seen.insert(e.parameter).second) throw Error(where + ": parameter " + e.parameter + " appears twice");
     if (!std::isfinite(e.value))
       throw Error(where + ": " + e.parameter + " value is not finite (" + std::to_string(e.value) + ")");
-    if (!(e.sigma > 0.0) || !std::isfinite(e.sigma))
-      throw Error(where + ": " + e.parameter + " sigma must be positive and finite, got " +
+    if (!(e.sigma >= 0.0) || !std::isfinite(e.sigma))
+      throw Error(where + ": " + e.parameter + " sigma must be non-negative (0: not reported) and finite, got " +
                   std::to_string(e.sigma));
   }
 }

@@ -17,7 +17,7 @@ Source parse_source(std::string_view text);
 struct ParameterEstimate {
   std::string parameter;  // physical parameter name: R1, R2, kw1, kw2, kr1, kr2, ks
   double value = 0.0;
-  double sigma = 0.0;  // one standard deviation, same unit as value, > 0
+  double sigma = 0.0;  // one standard deviation, same unit as value; 0: the identifier reports none
 };
 
 struct EstimateWindow {
@@ -26,7 +26,7 @@ struct EstimateWindow {
   Source source = Source::sim;
   std::vector<ParameterEstimate> estimates;
 
-  // Throws Error when the time, a value or a sigma is not finite, a sigma is not positive,
+  // Throws Error when the time, a value or a sigma is not finite, a sigma is negative,
   // the plant id or a parameter name is empty, or a parameter appears twice.
   void validate() const;
 };

@@ -19,6 +19,10 @@ EstimateWindow estimate_window(const std::map<std::string, double>& physical,
   for (const std::string& name : monitored_amb1dof_parameters()) {
     const auto value = physical.find(name);
     if (value == physical.end()) throw Error("estimate window: no physical value of " + name);
+    if (uncertainty.empty()) {  // a method without sigmas: the baseline's scatter is the whole sigma_eff
+      w.estimates.push_back({name, value->second, 0.0});
+      continue;
+    }
     const auto sigma = uncertainty.find(name);
     if (sigma == uncertainty.end()) throw Error("estimate window: no uncertainty of " + name);
     w.estimates.push_back({name, value->second, sigma->second});

@@ -15,7 +15,9 @@ const std::vector<std::string>& monitored_amb1dof_parameters();
 
 // From the physical values and their uncertainties (the `physical` and `uncertainty` of a
 // model file, or of an identification). Throws Error naming the first monitored parameter
-// missing from either map; the window is validated (finite values, positive sigmas).
+// missing from either map; the window is validated (finite values, sigmas >= 0). An empty
+// `uncertainty` (a method that reports none, e.g. closed-loop) gives sigma 0 for every
+// parameter: the scatter learned by the baseline is then the whole sigma_eff (baseline.hpp).
 EstimateWindow estimate_window(const std::map<std::string, double>& physical,
                                const std::map<std::string, double>& uncertainty, double time,
                                const std::string& plant_id, Source source);

@@ -25,8 +25,8 @@ SeriesMonitor::SeriesMonitor(const MonitorConfig& config, std::optional<Baseline
 }
 
 bool SeriesMonitor::update(double time, double value, double sigma) {
-  if (!std::isfinite(time) || !std::isfinite(value) || !(sigma > 0.0) || !std::isfinite(sigma))
-    throw Error("monitor: estimate at t=" + std::to_string(time) + " needs a finite value and a positive sigma, got " +
+  if (!std::isfinite(time) || !std::isfinite(value) || !(sigma >= 0.0) || !std::isfinite(sigma))
+    throw Error("monitor: estimate at t=" + std::to_string(time) + " needs a finite value and a non-negative sigma, got " +
                 std::to_string(value) + " +- " + std::to_string(sigma));
   if (last_time_ && !(time > *last_time_))
     throw Error("monitor: estimate at t=" + std::to_string(time) + " does not follow t=" + std::to_string(*last_time_));
@@ -41,6 +41,9 @@ bool SeriesMonitor::update(double time, double value, double sigma) {
     return true;
   }
   const double sigma_eff = baseline_->sigma_eff(sigma);
+  if (!(sigma_eff > 0.0))
+    throw Error("monitor: estimate at t=" + std::to_string(time) + " reports sigma 0 and the baseline learned no "
+                "extra spread: no sigma_eff to test it with");
   const bool was_step = cusum_.alarmed();
   cusum_.update(baseline_->z(value, sigma), config_.cusum.baseline_allowance * baseline_->mean_sigma / sigma_eff);
   // The edges of a step look like a steep slope to the slope test for a whole window; once a

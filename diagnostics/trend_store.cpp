@@ -20,7 +20,7 @@ CREATE TABLE estimates (
   source    TEXT NOT NULL CHECK (source IN ('sim', 'replay', 'rig')),
   parameter TEXT NOT NULL,
   value     REAL NOT NULL,
-  sigma     REAL NOT NULL CHECK (sigma > 0)
+  sigma     REAL NOT NULL CHECK (sigma >= 0)
 );
 CREATE INDEX estimates_series ON estimates (plant_id, parameter, time);
 CREATE INDEX estimates_time ON estimates (time);

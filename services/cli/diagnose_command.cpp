@@ -1,10 +1,12 @@
 // `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
 // Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
-// identified (identifier/identify_experiment, method deadbeat by default: the seed-000
-// deadbeat realisation, which reports the one-sigma of every parameter); a model file is one
-// window. The windows of the
-// first N inputs form the baseline, learned by the diagnostics engine (its mean and the
-// scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
+// identified (identifier/identify_experiment, method closed-loop by default: Lee ch. 2, unbiased
+// on an off-nominal plant but reporting no sigma, so the baseline's learned window-to-window
+// scatter is the whole sigma_eff; deadbeat reports sigmas but is biased off nominal). The first
+// window of each experiment skips kSettlingSamples (a record starts at the nominal operating
+// point and settles to the plant's own); later windows carry the controller state. A model
+// file is one window. The windows of the first N inputs form the baseline, learned by the
+// diagnostics engine (its mean and the scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
 // of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the
 // trend store DIR/trends.sqlite.
 //
@@ -38,12 +40,13 @@ namespace ambid::cli {
 namespace {
 
 constexpr double kModelDuration = 1.0;  // s a model file occupies on the time axis
+constexpr Eigen::Index kSettlingSamples = 1000;  // dropped from the first window of a record
 
 struct DiagnoseArguments {
   std::vector<std::string> inputs;
   std::size_t baseline = 3;
   double window = 0.25;
-  std::string method = "deadbeat";
+  std::string method = "closed-loop";
   std::string plant_id = "plant";
   std::string out;
 };
@@ -92,10 +95,8 @@ Input experiment_input(const std::string& file, double start, double window, con
     for (std::size_t i = 0; i < parts.size(); ++i) {
       try {
         const double end = start + double(i + 1) * double(samples) * e.sample_time;
+        options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
         const Model m = ident::identify_experiment(parts[i], options);
-        if (!m.uncertainty.count("R1"))
-          throw Error("method '" + method + "' reports no uncertainty of the physical parameters, which the " +
-                      "detection needs (--method deadbeat does)");
         in.windows.push_back(diag::estimate_window(m.physical, m.uncertainty, end, plant_id, diag::Source::replay));
       } catch (const Error& err) {
         throw Error("window " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + err.what());
@@ -239,8 +240,8 @@ void add_diagnose_command(CLI::App& app) {
   cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
       ->capture_default_str();
   cmd->add_option("--method", args->method,
-                  "identification of each window (identifier/identify_experiment.hpp); it must report the "
-                  "uncertainty of the physical parameters, as deadbeat does")
+                  "identification of each window (identifier/identify_experiment.hpp); closed-loop reports no "
+                  "sigma (the baseline scatter is used), deadbeat does but is biased off nominal")
       ->capture_default_str();
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();

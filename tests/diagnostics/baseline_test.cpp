@@ -72,9 +72,16 @@ TEST(Baseline, Given) {
 TEST(Baseline, RefusesBadInput) {
   const std::vector<double> four{1, 2, 3, 4};
   EXPECT_THROW(learn_baseline(four, four), InsufficientData);
-  const std::vector<double> v{1, 2, 3, 4, 5}, bad_sigma{1, 1, 0, 1, 1}, short_sigma{1, 1};
+  const std::vector<double> v{1, 2, 3, 4, 5}, bad_sigma{1, 1, -1, 1, 1}, short_sigma{1, 1};
   EXPECT_THROW(learn_baseline(v, bad_sigma), Error);
   EXPECT_THROW(learn_baseline(v, short_sigma), Error);
+  // No sigmas (0): the scatter is the whole sigma_eff, learned from >= 6 scattering windows.
+  const std::vector<double> no_sigma5(5, 0.0), no_sigma6(6, 0.0), six{1, 2, 3, 4, 5, 6}, flat(6, 2.0);
+  EXPECT_THROW(learn_baseline(v, no_sigma5), InsufficientData);
+  EXPECT_THROW(learn_baseline(flat, no_sigma6), InsufficientData);
+  const Baseline b = learn_baseline(six, no_sigma6);
+  EXPECT_DOUBLE_EQ(b.extra_spread, 1.4826 * 1.5);  // MAD of 1..6 about median 3.5 is 1.5
+  EXPECT_DOUBLE_EQ(b.sigma_eff(0.0), b.extra_spread);
   const std::vector<double> nan{1, 2, std::nan(""), 4, 5};
   EXPECT_THROW(learn_baseline(nan, v), Error);
 }

@@ -58,7 +58,7 @@ TEST(EstimateWindow, TakesTheMonitoredParametersWithTheirSigmas) {
   EXPECT_DOUBLE_EQ(w.time, 2.5);
   sigma.erase("ks");
   EXPECT_THROW(estimate_window(physical, sigma, 2.5, "bearing-A", Source::rig), Error);
-  sigma["ks"] = 0.0;  // a sigma must be positive
+  sigma["ks"] = -1.0;  // a sigma must be non-negative (0: not reported)
   EXPECT_THROW(estimate_window(physical, sigma, 2.5, "bearing-A", Source::rig), Error);
 }
 

@@ -65,8 +65,12 @@ class SimulatedStep : public ::testing::TestWithParam<StepCase> {};
 // learned baselines:
 //   R1 +20 % -> R1 +9.9 % (WARN, not ERROR), R2 -9.5 %, ks -6.5 %, kr1 = kr2 -3.1 % (air_gap)
 //   kw1 +20 % -> kw1 +20 % ERROR (right), but R1, R2 +19..20 %, kr1, kr2 +26 %, ks +34 %
-// so other faults are named. The diagnostics do what the estimates say; re-enable (remove
-// DISABLED_) once the identification of a faulty plant is unbiased.
+// so other faults are named. With closed-loop (now used here, no sigmas: the baseline scatter
+// is sigma_eff) it still fails on 0.25 s windows: R1 +20 % gives coil 1 but also force_factor
+// / air_gap alerts, and also on 1 s windows: R1 +20 % -> R1 +22 % ERROR (right) but ks -8.2 %,
+// kr1 = kr2 -3.5 % (air_gap WARN). Not yet known whether the linearised ks, kr of the faulty
+// operating point truly move (the coil currents shift) or the identification is biased;
+// re-enable once that is settled.
 TEST_P(SimulatedStep, DISABLED_ErrorNamesTheFaultWithinAFewWindows) {
   const StepCase c = GetParam();
   testing::SimulatedBearing bearing;

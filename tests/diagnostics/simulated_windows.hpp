@@ -3,7 +3,7 @@
 // nonlinear amb1dof_voltage bearing (plant_sim scenario, observer/LQR/integral controller, PRBS
 // on both inputs, seeded sensor noise) with the true parameters of that window, run for
 // `settle` seconds so the loop reaches the operating point the fault gives it, then `window`
-// seconds that are identified (identifier/amb1dof_deadbeat) and turned into an estimate
+// seconds that are identified (identify_experiment, method closed-loop: no sigmas) and turned into an estimate
 // window. Window n ends at time (n + 1) * window.
 #include <cstddef>
 #include <cstdint>

@@ -4,7 +4,7 @@
 
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/identified_estimates.hpp"
-#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/identify_experiment.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/scenario.hpp"
 
@@ -22,8 +22,11 @@ EstimateWindow SimulatedBearing::estimate(std::size_t n) const {
   const Experiment run = sim::simulate_scenario(o);
   const auto samples = static_cast<Eigen::Index>(std::lround(window / o.sample_time));
   const Experiment last = split_experiment(run, samples).back();
-  return estimate_window(ident::identify_amb1dof_deadbeat(last), static_cast<double>(n + 1) * window, plant_id,
-                         Source::sim);
+  ident::IdentifyOptions options;
+  options.method = "closed-loop";  // the window starts after `settle`, controller state carried: no skip
+  options.validation_fraction = 0.0;
+  const Model m = ident::identify_experiment(last, options);
+  return estimate_window(m.physical, m.uncertainty, static_cast<double>(n + 1) * window, plant_id, Source::sim);
 }
 
 }  // namespace ambid::diag::testing

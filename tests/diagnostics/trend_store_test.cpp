@@ -203,7 +203,7 @@ TEST(TrendStore, ErrorsNameTheOperationAndSqlitesMessage) {
   TrendStore store(path);
   batch.windows.push_back(window(2.0, "bearing-A", {{"R1", 17.5, -0.05}}));
   message = error_of([&] { store.write(batch); });
-  EXPECT_NE(message.find("R1 sigma must be positive"), std::string::npos) << message;
+  EXPECT_NE(message.find("R1 sigma must be non-negative"), std::string::npos) << message;
   EXPECT_TRUE(store.history("bearing-A", "R1").empty());  // nothing of the refused batch
 }
 
