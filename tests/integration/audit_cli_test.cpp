@@ -21,12 +21,8 @@ namespace fs = std::filesystem;
 
 using cli_test::CommandResult;
 using cli_test::fresh_dir;
+using cli_test::read_json;
 using cli_test::run_ambid;
-
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 // The command fails with exit code 1 and a message containing `message`.
 void expect_failure(const std::string& args, const std::string& message) {

@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace ambid::cli_test {
 
 struct CommandResult {
@@ -18,6 +20,9 @@ CommandResult run_ambid(const std::string& args);
 
 // An empty directory under the build tree for one test's files.
 std::filesystem::path fresh_dir(const std::string& name);
+
+// The JSON document in `path` (a file the command under test wrote).
+nlohmann::json read_json(const std::filesystem::path& path);
 
 // True when libxml2's parser accepts the file as well-formed XML (xmllint from libxml2-utils).
 bool well_formed_xml(const std::filesystem::path& file);

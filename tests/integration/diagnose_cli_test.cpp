@@ -16,15 +16,11 @@ namespace {
 
 using ::testing::HasSubstr;
 using cli_test::fresh_dir;
+using cli_test::read_json;
 using cli_test::run_ambid;
 namespace fs = std::filesystem;
 
 const std::string kNoise = " --duration 0.5 --amplitude 1 --position-noise 1e-9 --current-noise 1e-6";
-
-nlohmann::json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
 
 void write_json(const fs::path& path, const nlohmann::json& j) { std::ofstream(path) << j.dump(2); }
 

@@ -110,8 +110,7 @@ TEST(FrfCli, MultisineExperimentGivesPlantPoleZonesAndPlots) {
   const CommandResult frf = run_ambid("frf " + (dir / "ms.json").string() + " --out " + (dir / "frf").string());
   ASSERT_EQ(frf.status, 0) << frf.output;
   EXPECT_THAT(frf.output, HasSubstr("model x/u1"));
-  std::ifstream in(dir / "frf" / "frf.json");
-  const nlohmann::json json = nlohmann::json::parse(in);
+  const nlohmann::json json = cli_test::read_json(dir / "frf" / "frf.json");
   {
     SCOPED_TRACE("plant x/u1");
     check_plant_x_u1(json);
@@ -132,8 +131,7 @@ TEST(FrfCli, MultisineExperimentGivesPlantPoleZonesAndPlots) {
 
 // A copy of the experiment with its sidecar edited.
 fs::path edited_copy(const fs::path& dir, const std::string& stem, void (*edit)(nlohmann::json&)) {
-  std::ifstream in(dir / "ms.json");
-  nlohmann::json sidecar = nlohmann::json::parse(in);
+  nlohmann::json sidecar = cli_test::read_json(dir / "ms.json");
   edit(sidecar);
   std::ofstream(dir / (stem + ".json")) << sidecar.dump();
   fs::copy_file(dir / "ms.csv", dir / (stem + ".csv"), fs::copy_options::overwrite_existing);
