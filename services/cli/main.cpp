@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   ambid::cli::add_audit_command(app);
   ambid::cli::add_daemon_commands(app);
   ambid::cli::add_operator_commands(app);
+  ambid::cli::add_rig_emulator_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

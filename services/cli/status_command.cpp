@@ -39,7 +39,10 @@ void run(const StatusArguments& args) {
   }
   for (const auto& [id, s] : plants)
     std::cout << "plant " << id << ": source " << daemons::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
-              << " s" << (s.command_accepted ? "" : " (last command refused: " + s.message + ")") << "\n";
+              << " s"
+              << (s.command_accepted ? (s.message.empty() ? "" : " (" + s.message + ")")
+                                     : " (last command refused: " + s.message + ")")
+              << "\n";
   constexpr const char* zones = "-ABCD";
   for (const auto& [id, r] : frfs) {
     std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, "

@@ -19,10 +19,12 @@ struct PlantConfig {
   double speed = 10.0;
   double max_amplitude = 0.5;
   double max_frequency = 2000.0;
+  RigSettings rig;
 };
 
 PlantConfig plant_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency"});
+  reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency",
+                                      "rig_silence", "rig_reply_timeout", "rig_allow_remote"});
   PlantConfig c;
   c.kind = parse_source_kind(config_value<std::string>(j, "source", "sim"));
   c.target = config_value<std::string>(j, "target", "");
@@ -30,6 +32,12 @@ PlantConfig plant_config(const nlohmann::json& j) {
   c.speed = config_value(j, "speed", c.speed);
   c.max_amplitude = config_value(j, "max_amplitude", c.max_amplitude);
   c.max_frequency = config_value(j, "max_frequency", c.max_frequency);
+  c.rig.silence = config_value(j, "rig_silence", c.rig.silence);
+  c.rig.reply_timeout = config_value(j, "rig_reply_timeout", c.rig.reply_timeout);
+  c.rig.allow_remote = config_value(j, "rig_allow_remote", c.rig.allow_remote);
+  if (!(c.rig.silence > 0)) throw Error("plant config: rig_silence must be > 0 s, got " + std::to_string(c.rig.silence));
+  if (!(c.rig.reply_timeout > 0))
+    throw Error("plant config: rig_reply_timeout must be > 0 s, got " + std::to_string(c.rig.reply_timeout));
   if (c.target.empty()) throw Error("plant config: 'target' (the scenario or experiment file) is required");
   if (c.batch_samples < 1 || c.batch_samples > 2000)
     throw Error("plant config: batch_samples must be 1..2000, got " + std::to_string(c.batch_samples));
@@ -57,30 +65,42 @@ class PlantDaemon {
         samples_(bus_->writer<bus::PlantSamples>()), state_(bus_->writer<bus::PlantSourceState>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
-        source_(make_plant_source(c.kind, c.target)) {}
+        source_(make_plant_source(c.kind, c.target, context())) {}
 
   int run() {
     announce(0, true, "started");
     runtime_.ready(std::string(source_kind_name(source_->kind())) + " " + source_->target());
-    const auto start = std::chrono::steady_clock::now();
     while (runtime_.running()) {
       handle_commands();
+      if (auto c = source_->condition_change()) {
+        announce(last_source_command_, true, c->message);
+        runtime_.set_health(c->ok ? bus::AlertLevel::ok : bus::AlertLevel::warn, c->message);
+      }
       publish_batch();
-      // Pace: the simulated time published so far, at `speed` times real time.
-      const auto due = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                   std::chrono::duration<double>(clock_ / config_.speed));
+      if (source_->live()) continue;  // a live source waits for its samples in next_rows
+      // Pace: the simulated time published since the source started, at `speed` times real time.
+      const auto due = pace_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                         std::chrono::duration<double>((clock_ - pace_clock_) / config_.speed));
       std::this_thread::sleep_until(std::min(due, std::chrono::steady_clock::now() + std::chrono::milliseconds(200)));
     }
     return 0;
   }
 
  private:
+  SourceContext context() {
+    return {config_.batch_samples, config_.rig, &runtime_.metrics, [this](const std::string& line) { runtime_.log(line); }};
+  }
+
   void publish_batch() {
     if (row_ >= record_.samples()) {
-      record_ = source_->next_record();
-      record_offset_ = clock_ - record_.t(0);
+      std::optional<SourceRows> rows = source_->next_rows(std::chrono::milliseconds(20));
+      if (!rows) return;
+      record_ = std::move(rows->rows);
       row_ = 0;
-      seq_ = 0;
+      if (rows->starts_record) {
+        record_offset_ = clock_ - record_.t(0);
+        seq_ = 0;
+      }
     }
     const Eigen::Index count = std::min(config_.batch_samples, record_.samples() - row_);
     samples_->write(sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
@@ -95,8 +115,10 @@ class PlantDaemon {
       last_source_command_ = c.seq;
       runtime_.metrics.received.Increment();
       try {
-        source_ = make_plant_source(c.kind, c.target);
+        source_ = make_plant_source(c.kind, c.target, context());
         row_ = record_.samples();  // the next batch starts a record of the new source
+        pace_start_ = std::chrono::steady_clock::now();
+        pace_clock_ = clock_;
         announce(c.seq, true, "source swapped");
       } catch (const Error& e) {
         runtime_.metrics.rejected.Increment();
@@ -156,6 +178,8 @@ class PlantDaemon {
   std::uint64_t last_source_command_ = 0;
   double clock_ = 0.0;  // plant time of the next sample, continuous across records and sources
   double record_offset_ = 0.0;
+  std::chrono::steady_clock::time_point pace_start_ = std::chrono::steady_clock::now();
+  double pace_clock_ = 0.0;  // clock_ at pace_start_
 };
 
 }  // namespace

@@ -4,9 +4,10 @@
 // (PlantSourceState, transient-local), checks ExcitationCommands against its limits.
 //
 // Config (JSON, every key optional):
-//   {"source": "sim" | "replay", "target": FILE (scenario or experiment),
-//    "batch_samples": 500, "speed": 10.0,
-//    "max_amplitude": 0.5 (V), "max_frequency": 2000 (Hz)}
+//   {"source": "sim" | "replay" | "rig", "target": FILE (scenario or experiment) or A.B.C.D:PORT,
+//    "batch_samples": 500, "speed": 10.0 (sim and replay; a rig paces itself),
+//    "max_amplitude": 0.5 (V), "max_frequency": 2000 (Hz),
+//    "rig_silence": 1.0 (s), "rig_reply_timeout": 0.5 (s), "rig_allow_remote": false}
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "services/daemons/rig_source.hpp"
 #include "services/daemons/scenario_json.hpp"
 
 namespace ambid::daemons {
@@ -11,10 +12,10 @@ class SimSource : public PlantSource {
  public:
   explicit SimSource(const std::string& file) : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)) {}
 
-  Experiment next_record() override {
+  std::optional<SourceRows> next_rows(std::chrono::milliseconds) override {
     sim::ScenarioOptions o = options_;
     o.seed = options_.seed + records_++;
-    return sim::simulate_scenario(o);
+    return SourceRows{sim::simulate_scenario(o), true};
   }
 
   void excite(const ExcitationRequest& r) override {
@@ -38,7 +39,7 @@ class ReplaySource : public PlantSource {
  public:
   explicit ReplaySource(const std::string& file)
       : PlantSource(bus::SourceKind::replay, file), record_(read_experiment(file).experiment) {}
-  Experiment next_record() override { return record_; }
+  std::optional<SourceRows> next_rows(std::chrono::milliseconds) override { return SourceRows{record_, true}; }
   void excite(const ExcitationRequest&) override { throw Error("a replayed experiment cannot be excited"); }
 
  private:
@@ -47,7 +48,8 @@ class ReplaySource : public PlantSource {
 
 }  // namespace
 
-std::unique_ptr<PlantSource> make_plant_source(bus::SourceKind kind, const std::string& target) {
+std::unique_ptr<PlantSource> make_plant_source(bus::SourceKind kind, const std::string& target,
+                                               const SourceContext& context) {
   switch (kind) {
     case bus::SourceKind::sim:
       return std::make_unique<SimSource>(target);
@@ -56,7 +58,7 @@ std::unique_ptr<PlantSource> make_plant_source(bus::SourceKind kind, const std::
     case bus::SourceKind::rig:
       break;
   }
-  throw Error("source rig " + target + ": the rig gateway is not built yet (sources: sim, replay)");
+  return make_rig_source(target, context);
 }
 
 }  // namespace ambid::daemons

@@ -64,8 +64,14 @@ void Stack::start(const std::string& daemon, const std::vector<std::string>& ext
   const std::string vendor = vendors_.count(daemon) ? vendors_.at(daemon) : "cyclone";
   const std::string config = (dir_ / (daemon + ".json")).string();
   const std::string domain = std::to_string(domain_);
-  std::vector<std::string> args{AMBID_BINARY, "daemon", daemon, "--dds", vendor, "--domain", domain, "--config", config};
+  std::vector<std::string> args{"daemon", daemon, "--dds", vendor, "--domain", domain, "--config", config};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
+  start_process(daemon, args);
+}
+
+void Stack::start_process(const std::string& daemon, const std::vector<std::string>& ambid_args) {
+  std::vector<std::string> args{AMBID_BINARY};
+  args.insert(args.end(), ambid_args.begin(), ambid_args.end());
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

@@ -28,6 +28,8 @@ class Stack {
   Stack& operator=(const Stack&) = delete;
 
   void start(const std::string& daemon, const std::vector<std::string>& extra_args = {});
+  // `ambid ARGS` as a child process known as `name` (log, kill), e.g. the rig emulator.
+  void start_process(const std::string& name, const std::vector<std::string>& ambid_args);
   void kill(const std::string& daemon);  // SIGKILL: no goodbye on the bus
   // `ambid ARGS --domain D` against this stack.
   CommandResult ambid(const std::string& args) const;

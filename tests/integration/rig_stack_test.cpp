@@ -1,0 +1,38 @@
+// The whole service fed by the rig emulator over UDP: the board runs the nominal bearing,
+// then (from 10 s of board time on) the bearing with R1 +20 %; the operator's `ambid alerts`
+// sees the ERROR about coil 1 resistance, and STALE once the board is killed. About 15 s.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "stack_support.hpp"
+
+namespace ambid::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(RigStack, CoilFaultOnTheBoardGivesErrorAlertThenStaleWhenTheBoardDies) {
+  const std::string config = std::string(AMBID_SOURCE_DIR) + "/deploy/config/";
+  Stack stack("rig_stack", 185);
+  for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
+  stack.start_process("rig", {"rig-emulator", "--listen", "127.0.0.1:19185", "--scenario", config + "nominal-bearing.json",
+                              "--fault", config + "coil1-hot.json", "--fault-at", "10", "--speed", "10"});
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const CommandResult swap = stack.ambid("source set rig 127.0.0.1:19185");
+  ASSERT_EQ(swap.status, 0) << swap.output << stack.log("plant") << stack.log("rig");
+  const CommandResult alerts = stack.ambid("alerts --until ERROR:R1 --timeout 40");
+  ASSERT_EQ(alerts.status, 0) << alerts.output << stack.log("diagnostics") << stack.log("rig");
+  EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
+  EXPECT_THAT(alerts.output, HasSubstr("coil 1 resistance"));
+  EXPECT_THAT(stack.log("rig"), HasSubstr("runs the fault scenario coil1-hot"));
+  stack.kill("rig");
+  const CommandResult stale = stack.ambid("alerts --until STALE:R1 --timeout 20");
+  ASSERT_EQ(stale.status, 0) << stale.output << stack.log("diagnostics") << stack.log("plant");
+  EXPECT_THAT(stack.log("plant"), HasSubstr("rig 127.0.0.1:19185 silent"));
+}
+
+}  // namespace
+}  // namespace ambid::testing
