@@ -134,6 +134,7 @@ class RigSource : public PlantSource {
   void check_silence() {
     if (silent_ || seconds(Clock::now() - last_frame_) <= context_.rig.silence) return;
     silent_ = true;
+    have_seq_ = false;  // the rig may come back restarted, counting from 0 again
     flush();
     condition_ = SourceCondition{false, "rig " + rig_.text() + " silent: no frame for " +
                                             std::to_string(context_.rig.silence) + " s"};

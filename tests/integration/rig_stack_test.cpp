@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <thread>
 
+#include "diagnostics/trend_store.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -28,6 +30,16 @@ TEST(RigStack, CoilFaultOnTheBoardGivesErrorAlertThenStaleWhenTheBoardDies) {
   EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
   EXPECT_THAT(alerts.output, HasSubstr("coil 1 resistance"));
   EXPECT_THAT(stack.log("rig"), HasSubstr("runs the fault scenario coil1-hot"));
+  // The estimates behind the alert came from the board: stored with source rig, nominal R1
+  // (17.5 ohm) before the fault, raised after it (the identifier daemon reads +20 % as about
+  // +10 %, README "The service over DDS").
+  const auto r1 = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(r1.size(), 10u);
+  EXPECT_EQ(r1.back().source, diag::Source::rig);
+  EXPECT_GT(r1.back().value, 17.5 * 1.05);
+  std::size_t nominal_rig = 0;
+  for (const auto& e : r1) nominal_rig += e.source == diag::Source::rig && std::abs(e.value - 17.5) < 0.175;
+  EXPECT_GT(nominal_rig, 0u);
   stack.kill("rig");
   const CommandResult stale = stack.ambid("alerts --until STALE:R1 --timeout 20");
   ASSERT_EQ(stale.status, 0) << stale.output << stack.log("diagnostics") << stack.log("plant");

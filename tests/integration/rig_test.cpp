@@ -176,6 +176,7 @@ TEST(Rig, KilledBoardIsAnnouncedSilentAndPickedUpWhenItReturns) {
   EXPECT_THAT(status.output, HasSubstr("WARN rig 127.0.0.1:19182 silent"));  // the plant's Health
   start_emulator(stack, 19182);
   ASSERT_TRUE(wait_for_log(stack, "plant", "rig 127.0.0.1:19182 streaming again", 5s)) << stack.log("plant");
+  EXPECT_THAT(stack.log("plant"), Not(HasSubstr("rejected")));  // the restarted board counts from 0: accepted
   const CommandResult r = stack.ambid("record --out " + (stack.dir() / "again").string() + " --duration 0.2");
   EXPECT_EQ(r.status, 0) << r.output;
 }
