@@ -161,6 +161,9 @@ TEST(Rig, ExcitationsWithinLimitsReachTheBoardOthersAreRefusedBeforeTheyLeave) {
   const Experiment e = read_experiment(stem).experiment;
   EXPECT_NEAR(e.r.cwiseAbs().maxCoeff(), 0.1, 1e-12);
   EXPECT_NEAR(e.r.cwiseAbs().minCoeff(), 0.1, 1e-12);
+  // Swapped away, the gateway stops its keep-alives and the board its stream (2 s lease).
+  ASSERT_EQ(stack.ambid("source set sim " + nominal).status, 0);
+  EXPECT_TRUE(wait_for_log(stack, "rig", "silent for 2.000000 s: streaming stopped", 5s)) << stack.log("rig");
 }
 
 TEST(Rig, KilledBoardIsAnnouncedSilentAndPickedUpWhenItReturns) {
