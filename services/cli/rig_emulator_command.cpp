@@ -42,7 +42,7 @@ void add_rig_emulator_command(CLI::App& app) {
   c->add_option("--listen", args->listen, "UDP address to serve, 127.0.0.1:PORT")->required();
   c->add_option("--scenario", args->scenario, "scenario JSON of the board's plant and loop (default: nominal)");
   c->add_option("--fault", args->fault, "scenario JSON of the truth from --fault-at on");
-  c->add_option("--fault-at", args->fault_at, "board time (s) from which records run the --fault scenario")->capture_default_str();
+  c->add_option("--fault-at", args->fault_at, "board time (s, from the first HELLO) from which records run the --fault scenario")->capture_default_str();
   c->add_option("--speed", args->speed, "board time per wall time")->capture_default_str();
   c->add_option("--max-amplitude", args->max_amplitude, "amplifier limit (V): larger excitations are NACKed")->capture_default_str();
   c->add_option("--lease", args->lease, "seconds without HELLO/KEEPALIVE before streaming stops")->capture_default_str();

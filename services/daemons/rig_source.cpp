@@ -18,6 +18,7 @@ constexpr auto kHelloTimeout = 2s;
 constexpr auto kKeepAlivePeriod = 500ms;
 // A frame this far behind the expected sequence number is a restarted rig, not a late frame.
 constexpr std::uint32_t kRestartDistance = 1024;
+constexpr int kDrainLimit = 1000;  // datagrams per next_rows call (about 45 ms of a 50x board)
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -46,7 +47,12 @@ class RigSource : public PlantSource {
 
   std::optional<SourceRows> next_rows(std::chrono::milliseconds wait) override {
     const Clock::time_point end = Clock::now() + wait;
-    while (auto d = socket_.receive(0ms)) process(*d);
+    // What has arrived, bounded so that a flood cannot starve the daemon's command handling.
+    for (int k = 0; k < kDrainLimit; ++k) {
+      auto d = socket_.receive(0ms);
+      if (!d) break;
+      process(*d);
+    }
     while (ready_.empty() && Clock::now() < end) {
       keep_alive();
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now());
