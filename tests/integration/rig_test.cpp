@@ -31,10 +31,18 @@ using namespace std::chrono_literals;
 
 const std::string nominal = std::string(AMBID_SOURCE_DIR) + "/deploy/config/nominal-bearing.json";
 
-bool wait_for_log(const Stack& stack, const std::string& name, const std::string& text, std::chrono::seconds limit) {
+std::size_t count_of(const std::string& text, const std::string& needle) {
+  std::size_t n = 0;
+  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+// True once the log of `name` holds `text` at least `times` times (a restarted process appends).
+bool wait_for_log(const Stack& stack, const std::string& name, const std::string& text, std::chrono::seconds limit,
+                  std::size_t times = 1) {
   const auto end = std::chrono::steady_clock::now() + limit;
   while (std::chrono::steady_clock::now() < end) {
-    if (stack.log(name).find(text) != std::string::npos) return true;
+    if (count_of(stack.log(name), text) >= times) return true;
     std::this_thread::sleep_for(50ms);
   }
   return false;
@@ -45,20 +53,15 @@ std::string address(int port) { return "127.0.0.1:" + std::to_string(port); }
 void start_emulator(Stack& stack, int port, const std::vector<std::string>& extra = {}) {
   std::vector<std::string> args{"rig-emulator", "--listen", address(port), "--scenario", nominal, "--speed", "10"};
   args.insert(args.end(), extra.begin(), extra.end());
+  const std::size_t before = count_of(stack.log("rig"), "listening on ");
   stack.start_process("rig", args);
-  ASSERT_TRUE(wait_for_log(stack, "rig", "listening on " + address(port), 10s)) << stack.log("rig");
+  ASSERT_TRUE(wait_for_log(stack, "rig", "listening on " + address(port), 10s, before + 1)) << stack.log("rig");
 }
 
 void swap_to_rig(Stack& stack, int port) {
   const CommandResult swap = stack.ambid("source set rig " + address(port));
   ASSERT_EQ(swap.status, 0) << swap.output << stack.log("plant");
   EXPECT_THAT(swap.output, HasSubstr("source rig " + address(port) + " (source swapped"));
-}
-
-std::size_t count_of(const std::string& text, const std::string& needle) {
-  std::size_t n = 0;
-  for (auto at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
-  return n;
 }
 
 // The value of the Prometheus sample `name{...labels...}` whose labels contain `label`.
