@@ -120,6 +120,8 @@ class PlantDaemon {
         pace_start_ = std::chrono::steady_clock::now();
         pace_clock_ = clock_;
         announce(c.seq, true, "source swapped");
+        // A new source ends the WARN of a silent rig.
+        runtime_.set_health(bus::AlertLevel::ok, "source " + std::string(source_kind_name(c.kind)) + " " + c.target);
       } catch (const Error& e) {
         runtime_.metrics.rejected.Increment();
         announce(c.seq, false, e.what());

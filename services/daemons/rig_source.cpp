@@ -31,7 +31,9 @@ std::string join(const std::vector<std::string>& names) {
 class RigSource : public PlantSource {
  public:
   RigSource(const std::string& address, const SourceContext& c)
-      : PlantSource(bus::SourceKind::rig, address), context_(c), rig_(rig::parse_endpoint(address)),
+      : PlantSource(bus::SourceKind::rig, address),
+        context_(c),
+        rig_(rig::parse_endpoint(address)),
         socket_(rig::Endpoint{rig_.loopback() ? 0x7F000001u : 0u, 0}) {
     if (!context_.metrics) throw Error("rig source: no metrics given");
     Metrics& m = *context_.metrics;
@@ -39,8 +41,8 @@ class RigSource : public PlantSource {
     lost_ = &m.counter("ambid_rig_frames_lost_total", "rig frames missing from the sequence", {});
     hello();
     log("rig gateway " + socket_.local().text() + " -> " + rig_.text() + ": model " + status_.model + ", sample time " +
-        std::to_string(status_.sample_time) + " s, y " + join(status_.y_names) + ", u " + join(status_.u_names) + ", r " +
-        join(status_.r_names));
+        std::to_string(status_.sample_time) + " s, y " + join(status_.y_names) + ", u " + join(status_.u_names) +
+        ", r " + join(status_.r_names));
   }
 
   bool live() const override { return true; }
@@ -125,7 +127,8 @@ class RigSource : public PlantSource {
         if (auto d = socket_.receive(10ms)) process(*d);
     }
     if (!have_status_)
-      throw Error("rig " + rig_.text() + " did not answer HELLO within " + std::to_string(kHelloTimeout.count()) + " s");
+      throw Error("rig " + rig_.text() + " did not answer HELLO within " + std::to_string(kHelloTimeout.count()) +
+                  " s");
   }
 
   // KEEPALIVE while the rig streams; HELLO again while it is silent (it may have restarted).
@@ -142,8 +145,8 @@ class RigSource : public PlantSource {
     silent_ = true;
     have_seq_ = false;  // the rig may come back restarted, counting from 0 again
     flush();
-    condition_ = SourceCondition{false, "rig " + rig_.text() + " silent: no frame for " +
-                                            std::to_string(context_.rig.silence) + " s"};
+    condition_ = SourceCondition{
+        false, "rig " + rig_.text() + " silent: no frame for " + std::to_string(context_.rig.silence) + " s"};
   }
 
   void reject(const std::string& reason, const std::string& detail) {
@@ -158,7 +161,8 @@ class RigSource : public PlantSource {
 
   void process(const rig::UdpSocket::Datagram& d) {
     const rig::Decoded decoded = rig::decode(d.bytes);
-    if (!decoded.frame) return reject(std::string(rig::fault_name(decoded.fault)), decoded.reason + " (from " + d.from.text() + ")");
+    if (!decoded.frame)
+      return reject(std::string(rig::fault_name(decoded.fault)), decoded.reason + " (from " + d.from.text() + ")");
     if (!(d.from == rig_)) return reject("sender", "a frame from " + d.from.text() + ", not the rig " + rig_.text());
     if (!in_sequence(decoded.frame->seq)) return;
     frames_->Increment();
@@ -187,7 +191,8 @@ class RigSource : public PlantSource {
         log("rig frames " + std::to_string(next_seq_) + ".." + std::to_string(seq - 1) + " lost: a new record starts");
         break_ = true;
       } else if (ahead != 0 && next_seq_ - seq <= kRestartDistance) {
-        reject("sequence", "frame " + std::to_string(seq) + " late or repeated (expected " + std::to_string(next_seq_) + ")");
+        reject("sequence",
+               "frame " + std::to_string(seq) + " late or repeated (expected " + std::to_string(next_seq_) + ")");
         return false;
       } else if (ahead != 0) {
         log("rig sequence restarted at " + std::to_string(seq) + ": a new record starts");
@@ -206,8 +211,9 @@ class RigSource : public PlantSource {
       break_ = true;
     }
     if (have_status_ && s.state != status_.state)
-      condition_ = SourceCondition{s.state == rig::RigState::running, "rig " + rig_.text() + " reports " +
-                                                                      (s.state == rig::RigState::running ? "running" : "fault") + ": " + s.message};
+      condition_ = SourceCondition{s.state == rig::RigState::running,
+                                   "rig " + rig_.text() + " reports " +
+                                       (s.state == rig::RigState::running ? "running" : "fault") + ": " + s.message};
     status_ = s;
     have_status_ = true;
   }
@@ -215,9 +221,11 @@ class RigSource : public PlantSource {
   void take_batch(const rig::SampleBatch& b) {
     if (!have_status_) return reject("mismatch", "samples before the rig's status");
     if (b.model != status_.model || std::size_t(b.ny) != status_.y_names.size() ||
-        std::size_t(b.nu) != status_.u_names.size() || std::size_t(b.nr) != status_.r_names.size() || std::abs(b.sample_time - status_.sample_time) > 0.01 * status_.sample_time)
-      return reject("mismatch", "a batch of model " + b.model + " with " + std::to_string(b.ny) + "/" + std::to_string(b.nu) + "/" +
-                                    std::to_string(b.nr) + " channels, the rig's status says " + status_.model);
+        std::size_t(b.nu) != status_.u_names.size() || std::size_t(b.nr) != status_.r_names.size() ||
+        std::abs(b.sample_time - status_.sample_time) > 0.01 * status_.sample_time)
+      return reject("mismatch", "a batch of model " + b.model + " with " + std::to_string(b.ny) + "/" +
+                                    std::to_string(b.nu) + "/" + std::to_string(b.nr) +
+                                    " channels, the rig's status says " + status_.model);
     if (break_ || b.record != record_ || b.first_index != next_index_) {
       flush();
       pending_.starts_record = true;
@@ -227,9 +235,12 @@ class RigSource : public PlantSource {
     next_index_ = b.first_index + b.count();
     for (std::size_t k = 0; k < b.count(); ++k) {
       pending_.t.push_back(b.t[k]);
-      pending_.y.insert(pending_.y.end(), b.y.begin() + std::ptrdiff_t(k * b.ny), b.y.begin() + std::ptrdiff_t((k + 1) * b.ny));
-      pending_.u.insert(pending_.u.end(), b.u.begin() + std::ptrdiff_t(k * b.nu), b.u.begin() + std::ptrdiff_t((k + 1) * b.nu));
-      pending_.r.insert(pending_.r.end(), b.r.begin() + std::ptrdiff_t(k * b.nr), b.r.begin() + std::ptrdiff_t((k + 1) * b.nr));
+      pending_.y.insert(pending_.y.end(), b.y.begin() + std::ptrdiff_t(k * b.ny),
+                        b.y.begin() + std::ptrdiff_t((k + 1) * b.ny));
+      pending_.u.insert(pending_.u.end(), b.u.begin() + std::ptrdiff_t(k * b.nu),
+                        b.u.begin() + std::ptrdiff_t((k + 1) * b.nu));
+      pending_.r.insert(pending_.r.end(), b.r.begin() + std::ptrdiff_t(k * b.nr),
+                        b.r.begin() + std::ptrdiff_t((k + 1) * b.nr));
       if (Eigen::Index(pending_.size()) >= context_.batch_samples) flush();
     }
   }
@@ -246,9 +257,12 @@ class RigSource : public PlantSource {
     e.u_names = status_.u_names;
     e.r_names = status_.r_names;
     e.t = Eigen::Map<const Eigen::VectorXd>(pending_.t.data(), n);
-    e.y = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(pending_.y.data(), n, Eigen::Index(e.y_names.size()));
-    e.u = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(pending_.u.data(), n, Eigen::Index(e.u_names.size()));
-    e.r = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(pending_.r.data(), n, Eigen::Index(e.r_names.size()));
+    e.y = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        pending_.y.data(), n, Eigen::Index(e.y_names.size()));
+    e.u = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        pending_.u.data(), n, Eigen::Index(e.u_names.size()));
+    e.r = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        pending_.r.data(), n, Eigen::Index(e.r_names.size()));
     ready_.push_back(SourceRows{std::move(e), pending_.starts_record});
     pending_ = Pending{};
     pending_.starts_record = false;
@@ -275,8 +289,9 @@ class RigSource : public PlantSource {
 std::unique_ptr<PlantSource> make_rig_source(const std::string& address, const SourceContext& context) {
   // Checked before a socket exists: nothing is sent off loopback unless the config allows it.
   if (!rig::parse_endpoint(address).loopback() && !context.rig.allow_remote)
-    throw Error("rig address " + address +
-                " is not on loopback; set \"rig_allow_remote\": true in the plant config to reach a board on the network");
+    throw Error(
+        "rig address " + address +
+        " is not on loopback; set \"rig_allow_remote\": true in the plant config to reach a board on the network");
   return std::make_unique<RigSource>(address, context);
 }
 

@@ -59,7 +59,8 @@ class Emulator {
     ++record_count_;
     const bool faulty = o_.fault && record_start_ >= o_.fault_at;
     if (faulty && !fault_logged_) {
-      log_("record " + std::to_string(record_) + " at board time " + std::to_string(record_start_) + " s runs the fault scenario " + o_.fault->name);
+      log_("record " + std::to_string(record_) + " at board time " + std::to_string(record_start_) +
+           " s runs the fault scenario " + o_.fault->name);
       fault_logged_ = true;
     }
     record_data_ = sim::simulate_scenario(current());
@@ -70,7 +71,8 @@ class Emulator {
   // and the last partial frame of a record; unsent samples of a board nobody listens to are lost.
   void stream_until(double board_now) {
     const Experiment& e = record_data_;
-    const std::size_t per_frame = max_batch_samples(e.y_names.size(), e.u_names.size(), e.r_names.size(), e.plant.model.size());
+    const std::size_t per_frame =
+        max_batch_samples(e.y_names.size(), e.u_names.size(), e.r_names.size(), e.plant.model.size());
     for (;;) {
       const Eigen::Index left = e.samples() - row_;
       if (left == 0) {
@@ -128,12 +130,14 @@ class Emulator {
   void handle(const UdpSocket::Datagram& d) {
     const Decoded decoded = decode(d.bytes);
     if (!decoded.frame) {
-      log_("datagram from " + d.from.text() + " rejected (" + std::string(fault_name(decoded.fault)) + "): " + decoded.reason);
+      log_("datagram from " + d.from.text() + " rejected (" + std::string(fault_name(decoded.fault)) +
+           "): " + decoded.reason);
       return;
     }
     const Payload& p = decoded.frame->payload;
     if (const auto* hello = std::get_if<Hello>(&p)) {
-      if (!gateway_ || !(*gateway_ == d.from)) log_("HELLO from " + d.from.text() + " (" + hello->gateway + "): streaming to it");
+      if (!gateway_ || !(*gateway_ == d.from))
+        log_("HELLO from " + d.from.text() + " (" + hello->gateway + "): streaming to it");
       gateway_ = d.from;
       last_heard_ = Clock::now();
       if (!start_) start_ = last_heard_;  // the board's loop starts with the first subscription
@@ -165,8 +169,8 @@ class Emulator {
         r.reason = e.what();
       }
     }
-    log_("excitation command " + std::to_string(x.command) + " " + x.kind + " amplitude " + std::to_string(x.amplitude) +
-         " V: " + (r.accepted ? "ACK" : "NACK " + r.reason));
+    log_("excitation command " + std::to_string(x.command) + " " + x.kind + " amplitude " +
+         std::to_string(x.amplitude) + " V: " + (r.accepted ? "ACK" : "NACK " + r.reason));
     last_reply_ = r;
     return r;
   }
@@ -190,8 +194,10 @@ class Emulator {
 }  // namespace
 
 void validate(const EmulatorOptions& o) {
-  if (!(o.speed > 0 && o.speed <= 100)) throw Error("rig emulator: speed must be in (0, 100], got " + std::to_string(o.speed));
-  if (!(o.max_amplitude >= 0)) throw Error("rig emulator: max amplitude must be >= 0 V, got " + std::to_string(o.max_amplitude));
+  if (!(o.speed > 0 && o.speed <= 100))
+    throw Error("rig emulator: speed must be in (0, 100], got " + std::to_string(o.speed));
+  if (!(o.max_amplitude >= 0))
+    throw Error("rig emulator: max amplitude must be >= 0 V, got " + std::to_string(o.max_amplitude));
   if (!(o.lease > 0)) throw Error("rig emulator: lease must be > 0 s, got " + std::to_string(o.lease));
   if (!(o.fault_at >= 0)) throw Error("rig emulator: fault time must be >= 0 s, got " + std::to_string(o.fault_at));
   sim::build_scenario(o.scenario);

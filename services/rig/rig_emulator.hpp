@@ -16,12 +16,12 @@ namespace ambid::rig {
 
 struct EmulatorOptions {
   Endpoint listen;
-  sim::ScenarioOptions scenario;            // the board's plant and loop; one record = its duration
+  sim::ScenarioOptions scenario;              // the board's plant and loop; one record = its duration
   std::optional<sim::ScenarioOptions> fault;  // the truth of the records starting at or after fault_at
-  double fault_at = 0.0;                     // s of board time
-  double speed = 1.0;                        // board time per wall time
-  double max_amplitude = 1.0;                // V, the amplifiers' limit: larger excitations are NACKed
-  double lease = 2.0;                        // s without HELLO or KEEPALIVE: streaming stops
+  double fault_at = 0.0;                      // s of board time
+  double speed = 1.0;                         // board time per wall time
+  double max_amplitude = 1.0;                 // V, the amplifiers' limit: larger excitations are NACKed
+  double lease = 2.0;                         // s without HELLO or KEEPALIVE: streaming stops
 };
 
 // Throws Error naming a bad option (scenario, speed, limits) before it opens the socket.

@@ -65,8 +65,8 @@ class Reader {
   std::string text(std::size_t limit, const char* field) {
     const std::size_t n = u8(field);
     if (n > limit)
-      throw Malformed{Fault::bad_payload, std::string(field) + " of " + std::to_string(n) + " bytes, at most " +
-                                              std::to_string(limit)};
+      throw Malformed{Fault::bad_payload,
+                      std::string(field) + " of " + std::to_string(n) + " bytes, at most " + std::to_string(limit)};
     need(n, field);
     std::string s(b_.begin() + std::ptrdiff_t(at_), b_.begin() + std::ptrdiff_t(at_ + n));
     at_ += n;
@@ -75,7 +75,8 @@ class Reader {
   std::vector<std::string> names(const char* field) {
     const std::size_t n = u8(field);
     if (n > kMaxChannels)
-      throw Malformed{Fault::bad_payload, std::to_string(n) + " " + field + ", at most " + std::to_string(kMaxChannels)};
+      throw Malformed{Fault::bad_payload,
+                      std::to_string(n) + " " + field + ", at most " + std::to_string(kMaxChannels)};
     std::vector<std::string> out;
     for (std::size_t k = 0; k < n; ++k) out.push_back(text(kMaxName, field));
     return out;
@@ -173,7 +174,8 @@ SampleBatch decode_batch(Reader& r) {
   s.record = r.u32("record");
   s.first_index = r.u64("first index");
   s.sample_time = r.f64("sample time");
-  if (!(s.sample_time > 0)) throw Malformed{Fault::bad_value, "sample time " + std::to_string(s.sample_time) + " s is not > 0"};
+  if (!(s.sample_time > 0))
+    throw Malformed{Fault::bad_value, "sample time " + std::to_string(s.sample_time) + " s is not > 0"};
   s.model = r.text(kMaxName, "model name");
   s.ny = r.u8("y count");
   s.nu = r.u8("u count");
@@ -181,13 +183,14 @@ SampleBatch decode_batch(Reader& r) {
   const std::size_t count = r.u16("sample count");
   if (s.ny > kMaxChannels || s.nu > kMaxChannels || s.nr > kMaxChannels)
     throw Malformed{Fault::bad_payload, "channel counts " + std::to_string(s.ny) + "/" + std::to_string(s.nu) + "/" +
-                                            std::to_string(s.nr) + ", at most " + std::to_string(kMaxChannels) + " each"};
+                                            std::to_string(s.nr) + ", at most " + std::to_string(kMaxChannels) +
+                                            " each"};
   if (count == 0) throw Malformed{Fault::bad_payload, "a sample batch without samples"};
   const std::size_t needed = count * 8 * (1 + std::size_t(s.ny) + s.nu + s.nr);
   if (needed != r.left())
-    throw Malformed{Fault::bad_payload, std::to_string(count) + " samples of " + std::to_string(1 + s.ny + s.nu + s.nr) +
-                                            " values need " + std::to_string(needed) + " bytes, the payload holds " +
-                                            std::to_string(r.left())};
+    throw Malformed{Fault::bad_payload,
+                    std::to_string(count) + " samples of " + std::to_string(1 + s.ny + s.nu + s.nr) + " values need " +
+                        std::to_string(needed) + " bytes, the payload holds " + std::to_string(r.left())};
   for (std::size_t k = 0; k < count; ++k) {
     s.t.push_back(r.f64("sample time stamp"));
     for (std::size_t j = 0; j < s.ny; ++j) s.y.push_back(r.f64("y value"));
@@ -209,7 +212,8 @@ Payload decode_payload(FrameType type, Reader& r) {
     case FrameType::status: {
       RigStatus s;
       const std::uint8_t state = r.u8("state");
-      if (state > 1) throw Malformed{Fault::bad_payload, "rig state " + std::to_string(state) + " unknown (0 running, 1 fault)"};
+      if (state > 1)
+        throw Malformed{Fault::bad_payload, "rig state " + std::to_string(state) + " unknown (0 running, 1 fault)"};
       s.state = RigState(state);
       s.board_time = r.f64("board time");
       s.sample_time = r.f64("sample time");
@@ -235,7 +239,8 @@ Payload decode_payload(FrameType type, Reader& r) {
       ExciteReply e;
       e.command = r.u32("command");
       const std::uint8_t accepted = r.u8("accepted");
-      if (accepted > 1) throw Malformed{Fault::bad_payload, "accepted flag " + std::to_string(accepted) + " is not 0 or 1"};
+      if (accepted > 1)
+        throw Malformed{Fault::bad_payload, "accepted flag " + std::to_string(accepted) + " is not 0 or 1"};
       e.accepted = accepted == 1;
       e.reason = r.text(kMaxText, "reason");
       return e;
@@ -248,15 +253,24 @@ Payload decode_payload(FrameType type, Reader& r) {
 
 std::string_view fault_name(Fault fault) {
   switch (fault) {
-    case Fault::oversize: return "oversize";
-    case Fault::short_frame: return "short";
-    case Fault::bad_magic: return "magic";
-    case Fault::bad_version: return "version";
-    case Fault::bad_length: return "length";
-    case Fault::bad_crc: return "crc";
-    case Fault::unknown_type: return "type";
-    case Fault::bad_payload: return "payload";
-    case Fault::bad_value: break;
+    case Fault::oversize:
+      return "oversize";
+    case Fault::short_frame:
+      return "short";
+    case Fault::bad_magic:
+      return "magic";
+    case Fault::bad_version:
+      return "version";
+    case Fault::bad_length:
+      return "length";
+    case Fault::bad_crc:
+      return "crc";
+    case Fault::unknown_type:
+      return "type";
+    case Fault::bad_payload:
+      return "payload";
+    case Fault::bad_value:
+      break;
   }
   return "value";
 }
@@ -305,21 +319,22 @@ std::vector<std::uint8_t> encode(const Frame& frame) {
 Decoded decode(std::span<const std::uint8_t> d) {
   try {
     if (d.size() > kMaxFrameSize)
-      throw Malformed{Fault::oversize, "datagram of " + std::to_string(d.size()) + " bytes, at most " + std::to_string(kMaxFrameSize)};
+      throw Malformed{Fault::oversize,
+                      "datagram of " + std::to_string(d.size()) + " bytes, at most " + std::to_string(kMaxFrameSize)};
     if (d.size() < kHeaderSize)
       throw Malformed{Fault::short_frame, "datagram of " + std::to_string(d.size()) + " bytes, shorter than the " +
                                               std::to_string(kHeaderSize) + "-byte header"};
     Reader h(d.first(kHeaderSize));
     if (const std::uint32_t magic = h.u32("magic"); magic != kMagic)
       throw Malformed{Fault::bad_magic, "magic 0x" + [&] {
-        static const char* hex = "0123456789abcdef";
-        std::string s;
-        for (int k = 7; k >= 0; --k) s += hex[(magic >> (4 * k)) & 0xF];
-        return s;
-      }() + " is not an ambid rig frame"};
+                        static const char* hex = "0123456789abcdef";
+                        std::string s;
+                        for (int k = 7; k >= 0; --k) s += hex[(magic >> (4 * k)) & 0xF];
+                        return s;
+                      }() + " is not an ambid rig frame"};
     if (const std::uint16_t version = h.u16("version"); version != kVersion)
-      throw Malformed{Fault::bad_version, "protocol version " + std::to_string(version) + ", this end speaks " +
-                                              std::to_string(kVersion)};
+      throw Malformed{Fault::bad_version,
+                      "protocol version " + std::to_string(version) + ", this end speaks " + std::to_string(kVersion)};
     const std::uint16_t type = h.u16("type");
     if (const std::uint32_t length = h.u32("length"); length != d.size())
       throw Malformed{Fault::bad_length, "length field " + std::to_string(length) + " bytes, the datagram has " +

@@ -19,11 +19,18 @@ inline constexpr std::uint16_t kVersion = 1;
 inline constexpr std::size_t kHeaderSize = 20;
 // 1500-byte Ethernet MTU minus the IPv4 (20) and UDP (8) headers: a frame is never fragmented.
 inline constexpr std::size_t kMaxFrameSize = 1472;
-inline constexpr std::size_t kMaxChannels = 8;   // per group (y, u, r)
-inline constexpr std::size_t kMaxName = 32;      // model and channel names, excitation kind
-inline constexpr std::size_t kMaxText = 200;     // gateway id, status message, NACK reason
+inline constexpr std::size_t kMaxChannels = 8;  // per group (y, u, r)
+inline constexpr std::size_t kMaxName = 32;     // model and channel names, excitation kind
+inline constexpr std::size_t kMaxText = 200;    // gateway id, status message, NACK reason
 
-enum class FrameType : std::uint16_t { hello = 1, keepalive = 2, status = 3, samples = 4, excite = 5, excite_reply = 6 };
+enum class FrameType : std::uint16_t {
+  hello = 1,
+  keepalive = 2,
+  status = 3,
+  samples = 4,
+  excite = 5,
+  excite_reply = 6
+};
 
 // Gateway -> rig: subscribe (start streaming to the sender) and identify the gateway.
 struct Hello {
@@ -53,8 +60,8 @@ struct SampleBatch {
   double sample_time = 0.0;
   std::string model;
   std::uint8_t ny = 0, nu = 0, nr = 0;
-  std::vector<double> t;           // count entries, s (board clock)
-  std::vector<double> y, u, r;     // row-major: count x ny, nu, nr
+  std::vector<double> t;        // count entries, s (board clock)
+  std::vector<double> y, u, r;  // row-major: count x ny, nu, nr
   std::size_t count() const { return t.size(); }
   bool operator==(const SampleBatch&) const = default;
 };
@@ -83,7 +90,17 @@ struct Frame {
 };
 
 // Why a datagram is not a frame (the metrics label of the gateway's rejected frames).
-enum class Fault { oversize, short_frame, bad_magic, bad_version, bad_length, bad_crc, unknown_type, bad_payload, bad_value };
+enum class Fault {
+  oversize,
+  short_frame,
+  bad_magic,
+  bad_version,
+  bad_length,
+  bad_crc,
+  unknown_type,
+  bad_payload,
+  bad_value
+};
 std::string_view fault_name(Fault fault);
 
 struct Decoded {

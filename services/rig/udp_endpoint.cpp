@@ -38,7 +38,8 @@ Endpoint parse_endpoint(const std::string& text, bool allow_any_port) {
   const std::string host = text.substr(0, colon), port = text.substr(colon + 1);
   in_addr address{};
   if (inet_pton(AF_INET, host.c_str(), &address) != 1)
-    throw Error("rig address '" + text + "': '" + host + "' is not a numeric IPv4 address (host names are not looked up)");
+    throw Error("rig address '" + text + "': '" + host +
+                "' is not a numeric IPv4 address (host names are not looked up)");
   if (port.empty() || port.size() > 5 || port.find_first_not_of("0123456789") != std::string::npos)
     throw Error("rig address '" + text + "': port '" + port + "' is not a number");
   const unsigned long p = std::stoul(port);
@@ -80,7 +81,8 @@ std::optional<UdpSocket::Datagram> UdpSocket::receive(std::chrono::milliseconds 
   if (poll(&p, 1, int(wait.count())) <= 0 || !(p.revents & POLLIN)) return std::nullopt;
   sockaddr_in from{};
   socklen_t n = sizeof from;
-  const ssize_t got = recvfrom(fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &n);
+  const ssize_t got =
+      recvfrom(fd_, buffer_.data(), buffer_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &n);
   if (got < 0) return std::nullopt;  // e.g. ECONNREFUSED from an earlier send: nothing to read
   return Datagram{{buffer_.begin(), buffer_.begin() + got}, from_sockaddr(from)};
 }

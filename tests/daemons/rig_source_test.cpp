@@ -3,13 +3,14 @@
 // index jump each start a new record and a gap is counted as lost frames; batches that do
 // not match the board's status are rejected; excitations wait for the ACK/NACK; silence and
 // the return from it are reported once each.
+#include "services/daemons/rig_source.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <thread>
 
 #include "core/error.hpp"
-#include "services/daemons/rig_source.hpp"
 #include "services/rig/rig_frame.hpp"
 #include "services/rig/udp_endpoint.hpp"
 
@@ -123,7 +124,7 @@ TEST(RigSource, BatchesAreCutAndEveryBreakStartsANewRecord) {
   EXPECT_EQ(rows[1].rows.t(0), 88e-3);
   EXPECT_EQ(board.counter("ambid_rig_frames_lost_total"), 1.0);
 
-  board.batch(1, 0, 30);  // the board restarted its loop: record 1
+  board.batch(1, 0, 30);   // the board restarted its loop: record 1
   board.batch(1, 40, 30);  // samples 30..39 missing inside the record
   rows = take(*source, 2);
   ASSERT_EQ(rows.size(), 2u);

@@ -4,12 +4,11 @@
 // before they leave, a killed board is announced silent and picked up again when it returns,
 // malformed datagrams are counted by reason and ignored, bad addresses are refused.
 #include <arpa/inet.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <fstream>
@@ -68,7 +67,8 @@ void swap_to_rig(Stack& stack, int port) {
 double metric(const std::string& body, const std::string& name, const std::string& label) {
   std::istringstream lines(body);
   for (std::string line; std::getline(lines, line);)
-    if (line.rfind(name + "{", 0) == 0 && line.find(label) != std::string::npos) return std::stod(line.substr(line.rfind(' ') + 1));
+    if (line.rfind(name + "{", 0) == 0 && line.find(label) != std::string::npos)
+      return std::stod(line.substr(line.rfind(' ') + 1));
   return -1.0;
 }
 
@@ -107,8 +107,8 @@ TEST(Rig, SamplesOfTheBoardReachTheBusBitForBit) {
 
 class Excitations {
  public:
-  Excitations(Stack& stack, int domain) : stack_(stack), bus_(bus::make_bus("cyclone", domain)),
-                                           writer_(bus_->writer<bus::ExcitationCommand>()) {}
+  Excitations(Stack& stack, int domain)
+      : stack_(stack), bus_(bus::make_bus("cyclone", domain)), writer_(bus_->writer<bus::ExcitationCommand>()) {}
   // Sends the command until the plant logs its outcome (a volatile command written before
   // the plant's reader matched us is lost); returns that log line.
   std::string send(std::uint64_t seq, const std::string& kind, double amplitude, std::vector<double> frequencies = {}) {
@@ -118,7 +118,8 @@ class Excitations {
     c.kind = kind;
     c.amplitude = amplitude;
     c.frequencies = std::move(frequencies);
-    const std::regex outcome("[^\n]*(\\(command " + std::to_string(seq) + "\\)|command " + std::to_string(seq) + " refused)[^\n]*");
+    const std::regex outcome("[^\n]*(\\(command " + std::to_string(seq) + "\\)|command " + std::to_string(seq) +
+                             " refused)[^\n]*");
     for (int attempt = 0; attempt < 10; ++attempt) {
       for (int k = 0; k < 200 && writer_->matched() == 0; ++k) bus_->wait(50ms);
       writer_->write(c);
@@ -145,10 +146,13 @@ TEST(Rig, ExcitationsWithinLimitsReachTheBoardOthersAreRefusedBeforeTheyLeave) {
   swap_to_rig(stack, 19181);
   Excitations excite(stack, 181);
   EXPECT_THAT(excite.send(1, "prbs", 0.1), HasSubstr("excitation prbs accepted (command 1)"));
-  EXPECT_THAT(excite.send(2, "multisine", 0.3, {10, 100}),
-              HasSubstr("refused: rig 127.0.0.1:19181 NACK: amplitude 0.300000 V above the board's amplifier limit 0.200000 V"));
+  EXPECT_THAT(
+      excite.send(2, "multisine", 0.3, {10, 100}),
+      HasSubstr(
+          "refused: rig 127.0.0.1:19181 NACK: amplitude 0.300000 V above the board's amplifier limit 0.200000 V"));
   EXPECT_THAT(excite.send(3, "prbs", 0.8), HasSubstr("refused: amplitude 0.800000 V outside 0..0.500000 V"));
-  EXPECT_THAT(excite.send(4, "multisine", 0.1, {5000}), HasSubstr("refused: frequency 5000.000000 Hz outside (0, 2000"));
+  EXPECT_THAT(excite.send(4, "multisine", 0.1, {5000}),
+              HasSubstr("refused: frequency 5000.000000 Hz outside (0, 2000"));
   // Only the two within the plant's limits reached the board.
   const std::string board = stack.log("rig");
   EXPECT_EQ(count_of(board, "excitation command "), 2u) << board;
@@ -218,20 +222,22 @@ TEST(Rig, MalformedDatagramsAreCountedByReasonAndIgnored) {
   to.sin_port = htons(std::uint16_t(std::stoi(gateway[1])));
   to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
   const std::vector<std::vector<std::uint8_t>> datagrams{
-      {'h', 'e', 'l', 'l', 'o'},                 // short
-      std::vector<std::uint8_t>(2000, 0),        // oversize
-      std::vector<std::uint8_t>(20, 'X'),        // magic
-      header(2, 20),                             // version
-      header(1, 24),                             // length
-      header(1, 20, true),                       // crc
-      header(1, 20)};                            // a valid KEEPALIVE, but not from the rig: sender
+      {'h', 'e', 'l', 'l', 'o'},           // short
+      std::vector<std::uint8_t>(2000, 0),  // oversize
+      std::vector<std::uint8_t>(20, 'X'),  // magic
+      header(2, 20),                       // version
+      header(1, 24),                       // length
+      header(1, 20, true),                 // crc
+      header(1, 20)};                      // a valid KEEPALIVE, but not from the rig: sender
   for (const auto& d : datagrams)
     ASSERT_EQ(sendto(fd, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(&to), sizeof to), ssize_t(d.size()));
   close(fd);
   std::this_thread::sleep_for(500ms);
   const std::string m = http_get(19283, "/metrics");
   for (const char* reason : {"short", "oversize", "magic", "version", "length", "crc", "sender"})
-    EXPECT_EQ(metric(m, "ambid_rig_frames_rejected_total", std::string("reason=\"") + reason + "\""), 1.0) << reason << "\n" << m;
+    EXPECT_EQ(metric(m, "ambid_rig_frames_rejected_total", std::string("reason=\"") + reason + "\""), 1.0)
+        << reason << "\n"
+        << m;
   EXPECT_THAT(stack.log("plant"), HasSubstr("rig datagram rejected (crc"));
   // The stream goes on.
   const CommandResult r = stack.ambid("record --out " + (stack.dir() / "after").string() + " --duration 0.2");

@@ -1,6 +1,8 @@
 // The rig protocol codec (RIG_PROTOCOL.md): every frame type survives a round trip, one frame
 // always fits one unfragmented datagram, and every malformed datagram is rejected with its
 // fault and a reason naming what is wrong.
+#include "services/rig/rig_frame.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -10,7 +12,6 @@
 #include <random>
 
 #include "core/error.hpp"
-#include "services/rig/rig_frame.hpp"
 
 namespace ambid::rig {
 namespace {
@@ -63,7 +64,7 @@ TEST(RigFrame, HeaderLayoutIsLittleEndian) {
   EXPECT_EQ(std::string(b.begin(), b.begin() + 4), "AMBR");
   EXPECT_EQ(b[4], 1);  // version 1
   EXPECT_EQ(b[5], 0);
-  EXPECT_EQ(b[6], 2);  // KEEPALIVE
+  EXPECT_EQ(b[6], 2);   // KEEPALIVE
   EXPECT_EQ(b[8], 20);  // length
   EXPECT_EQ(b[12], 0x04);
   EXPECT_EQ(b[15], 0x01);
@@ -79,8 +80,12 @@ TEST(RigFrame, EveryTypeRoundTrips) {
   status.u_names = {"u1", "u2"};
   status.r_names = {"r1", "r2"};
   status.message = "amplifier 2 over temperature";
-  const std::vector<Payload> payloads{Hello{"bearing-1 gateway"}, KeepAlive{},   status, batch(21),
-                                      Excite{42, "multisine", 0.2, 1.0, 800.0}, ExciteReply{42, false, "too fast"},
+  const std::vector<Payload> payloads{Hello{"bearing-1 gateway"},
+                                      KeepAlive{},
+                                      status,
+                                      batch(21),
+                                      Excite{42, "multisine", 0.2, 1.0, 800.0},
+                                      ExciteReply{42, false, "too fast"},
                                       ExciteReply{43, true, ""}};
   std::uint32_t seq = 0xFFFFFFF0u;
   for (const Payload& p : payloads) {
@@ -127,7 +132,8 @@ std::vector<Case> malformed_cases() {
   const auto good = encode(Frame{5, batch(10)});
   std::vector<Case> cases;
   cases.push_back({"empty", {}, Fault::short_frame, "shorter than the 20-byte header"});
-  cases.push_back({"short", std::vector<std::uint8_t>(good.begin(), good.begin() + 19), Fault::short_frame, "19 bytes"});
+  cases.push_back(
+      {"short", std::vector<std::uint8_t>(good.begin(), good.begin() + 19), Fault::short_frame, "19 bytes"});
   cases.push_back({"oversize", std::vector<std::uint8_t>(kMaxFrameSize + 1, 0), Fault::oversize, "1473 bytes"});
   auto magic = good;
   magic[0] = 'X';
@@ -151,7 +157,8 @@ std::vector<Case> malformed_cases() {
   auto count = good;
   put_u16(count, 20 + 4 + 8 + 8 + 16 + 3, 11);
   reseal(count);
-  cases.push_back({"count vs length", count, Fault::bad_payload, "11 samples of 8 values need 704 bytes, the payload holds 640"});
+  cases.push_back(
+      {"count vs length", count, Fault::bad_payload, "11 samples of 8 values need 704 bytes, the payload holds 640"});
   auto channels = good;
   channels[20 + 4 + 8 + 8 + 16] = 9;  // ny = 9 > 8
   reseal(channels);

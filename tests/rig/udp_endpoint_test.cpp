@@ -1,10 +1,11 @@
 // Rig addresses: numeric IPv4 and a port, refused otherwise with the reason; and a datagram
 // over loopback arrives whole with its sender.
+#include "services/rig/udp_endpoint.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "services/rig/udp_endpoint.hpp"
 
 namespace ambid::rig {
 namespace {
