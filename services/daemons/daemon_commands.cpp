@@ -26,7 +26,7 @@ void add_daemon(CLI::App& daemon, const char* name, const char* what, int (*run)
 void add_daemon_commands(CLI::App& app) {
   CLI::App* daemon = app.add_subcommand("daemon", "run one daemon of the distributed service (DDS)");
   daemon->require_subcommand(1);
-  add_daemon(*daemon, "plant", "publish plant samples from a source (sim | replay); swap it on command",
+  add_daemon(*daemon, "plant", "publish plant samples from a source (sim | replay | rig); swap it on command",
              daemons::run_plant_daemon);
   add_daemon(*daemon, "identifier", "identify windows of plant samples -> identified models",
              daemons::run_identifier_daemon);

@@ -202,6 +202,8 @@ void validate(const EmulatorOptions& o) {
   if (!(o.fault_at >= 0)) throw Error("rig emulator: fault time must be >= 0 s, got " + std::to_string(o.fault_at));
   sim::build_scenario(o.scenario);
   if (o.fault) sim::build_scenario(*o.fault);
+  if (o.fault && o.fault->plant != o.scenario.plant)  // the channels of one board do not change
+    throw Error("rig emulator: the fault scenario's plant " + o.fault->plant + " is not the board's " + o.scenario.plant);
 }
 
 void run_emulator(const EmulatorOptions& options, const std::function<bool()>& running,

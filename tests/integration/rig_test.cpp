@@ -265,5 +265,18 @@ TEST(Rig, BadRigAddressesAreRefusedAndThePlantKeepsItsSource) {
   EXPECT_THAT(status.output, HasSubstr("rejected 5"));
 }
 
+TEST(Rig, EmulatorRefusesBadOptionsNamingThem) {
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--listen 10.0.0.1:19186", "--listen 10.0.0.1:19186 is not a loopback address"},
+      {"--listen localhost:19186", "'localhost' is not a numeric IPv4 address"},
+      {"--listen 127.0.0.1:19186 --speed 0", "speed must be in (0, 100], got 0"},
+      {"--listen 127.0.0.1:19186 --max-amplitude -1", "max amplitude must be >= 0 V"}};
+  for (const auto& [args, why] : cases) {
+    const CommandResult r = run_ambid("rig-emulator " + args);
+    EXPECT_EQ(r.status, 1) << args << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr(why)) << args;
+  }
+}
+
 }  // namespace
 }  // namespace ambid::testing
