@@ -1,7 +1,8 @@
 // The whole service as separate processes over DDS (loopback profile, one domain per test):
 // a simulated bearing, then its plant source swapped to the same bearing with R1 +20 %
 // (deploy/config/coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
-// coil 1 resistance within a bounded time. Each test takes 10-20 s.
+// coil 1 resistance, with the identified R1 of about 21 ohm, within a bounded time. Each test
+// takes 10-20 s.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -37,6 +38,12 @@ void expect_coil1_error(Stack& stack) {
   ASSERT_EQ(alerts.status, 0) << alerts.output << stack.log("diagnostics");
   EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
   EXPECT_THAT(alerts.output, HasSubstr("coil 1 resistance"));
+  // The value the ERROR carries is the identified R1: the truth 21 ohm within 5 %.
+  const auto line = alerts.output.find("ERROR  bearing-1  R1");
+  ASSERT_NE(line, std::string::npos) << alerts.output;
+  const auto value = alerts.output.find("  value ", line);
+  ASSERT_NE(value, std::string::npos) << alerts.output;
+  EXPECT_NEAR(std::stod(alerts.output.substr(value + 8)), 21.0, 0.05 * 21.0) << alerts.output;
 }
 
 TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
