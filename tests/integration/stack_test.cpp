@@ -85,15 +85,19 @@ TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   ASSERT_EQ(ok.status, 0) << ok.output << stack.log("diagnostics");
   EXPECT_THAT(ok.output, HasSubstr("estimates resumed"));
   // The trend history is intact: what was stored before the restart is still there, unchanged,
-  // followed by the new estimates (nominal R1 17.5 ohm within 1 %).
+  // followed by the new estimates: 1 s more is ~30 windows at 10x real time, whose mean is
+  // the nominal R1 17.5 ohm within 2.5 % (one window scatters ~3 % with the sensor noise).
+  std::this_thread::sleep_for(std::chrono::seconds(1));
   const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
-  ASSERT_GT(after.size(), before.size());
+  ASSERT_GT(after.size(), before.size() + 10);
   for (std::size_t k = 0; k < before.size(); ++k) {
     EXPECT_EQ(after[k].time, before[k].time);
     EXPECT_EQ(after[k].value, before[k].value);
   }
   for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
-  EXPECT_NEAR(after.back().value, 17.5, 0.175);
+  double sum = 0.0;
+  for (std::size_t k = before.size(); k < after.size(); ++k) sum += after[k].value;
+  EXPECT_NEAR(sum / double(after.size() - before.size()), 17.5, 0.025 * 17.5);
 }
 
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
@@ -139,7 +143,8 @@ TEST(Stack, FrfDaemonPublishesSensitivityPeaksAndZone) {
 }
 
 // `ambid record` writes an experiment file from the bus that the reader accepts; its samples
-// are the plant's nominal closed loop (x stays within a micrometre of the operating point).
+// are the plant's nominal closed loop (x stays within 5 um of the operating point under the
+// 1 V PRBS: its standard deviation is ~0.4 um).
 TEST(Stack, RecordWritesAnExperimentFromTheBus) {
   Stack stack("stack_record", 177);
   stack.start("plant");
@@ -152,8 +157,8 @@ TEST(Stack, RecordWritesAnExperimentFromTheBus) {
   EXPECT_DOUBLE_EQ(e.sample_time, 1e-4);
   EXPECT_EQ(e.plant.model, "amb1dof_voltage");
   ASSERT_TRUE(e.controller);
-  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 1e-6);
-  EXPECT_GT(e.r.cwiseAbs().maxCoeff(), 0.04);  // the PRBS of 0.05 V was recorded
+  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 5e-6);
+  EXPECT_NEAR(e.r.cwiseAbs().maxCoeff(), 1.0, 1e-9);  // the PRBS of 1 V was recorded
 }
 
 }  // namespace
