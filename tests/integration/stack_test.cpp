@@ -54,6 +54,11 @@ TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("source sim " + coil1_hot));
   EXPECT_THAT(stack.log("diagnostics"), ::testing::Not(HasSubstr("rejected")));
+  // Coil 2 is untouched and closed-loop reads it so (deadbeat's off-nominal bias moved R2 by
+  // -9 % and raised coil 2 alerts here).
+  const CommandResult all = stack.ambid("alerts --wait 1");
+  EXPECT_THAT(all.output, HasSubstr("R1  coil_resistance (channel 1)")) << all.output;
+  EXPECT_THAT(all.output, ::testing::Not(HasSubstr("  R2  "))) << all.output;
 }
 
 // Samples Fast DDS -> Cyclone, models Cyclone -> Fast DDS, alerts Fast DDS -> Cyclone (the CLI).
