@@ -53,7 +53,7 @@ std::vector<ambid::Experiment> records(const std::string& scenario, int count) {
 }
 
 const std::vector<ambid::Experiment>& nominal() {
-  static const auto r = records("nominal-bearing.json", 8);
+  static const auto r = records("nominal-bearing.json", 16);
   return r;
 }
 const std::vector<ambid::Experiment>& hot() {
@@ -168,7 +168,7 @@ void BM_SampleToAlert(benchmark::State& state) {
         poll_alerts();
       }
     };
-    for (const ambid::Experiment& e : nominal())  // 8 records: 24 windows, 10 of them learn
+    for (const ambid::Experiment& e : nominal())  // 16 records: 48 windows, 40 of them learn
       for (std::uint64_t seq = 0; seq < batches(e); ++seq, paced()) plant.publish(e, seq);
     if (error) {
       state.SkipWithError("an ERROR about R1 before the fault");

@@ -27,8 +27,9 @@ void start_all(Stack& stack) {
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
 }
 
-// Swaps the source once the baseline is learned (10 windows of 0.25 s plant time at 10x real
-// time: 0.25 s wall plus discovery), then waits at most 30 s for the ERROR about R1.
+// Swaps the source once the baseline is learned (40 windows of 0.25 s, three per 1 s record:
+// 13.3 s plant time, 1.3 s wall at 10x real time, plus discovery), then waits at most 30 s for
+// the ERROR about R1.
 void expect_coil1_error(Stack& stack) {
   std::this_thread::sleep_for(std::chrono::seconds(4));
   const CommandResult swap = stack.ambid("source set sim " + coil1_hot);
