@@ -47,10 +47,26 @@ void expect_coil1_error(Stack& stack) {
   EXPECT_NEAR(std::stod(alerts.output.substr(value + 8)), 21.0, 0.05 * 21.0) << alerts.output;
 }
 
+// The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
+double metric(const std::string& text, const std::string& line) {
+  const auto at = text.find(line + " ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
+}
+
 TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
   Stack stack("stack_cyclone", 170);
-  start_all(stack);
+  stack.start("diagnostics", {"--metrics-port", "19191"});
+  stack.start("identifier", {"--metrics-port", "19190"});
+  stack.start("plant");
   expect_coil1_error(stack);
+  // The metrics of the run: samples in, windows identified and timed, the ERROR counted.
+  const std::string identifier = http_get(19190, "/metrics");
+  EXPECT_GT(metric(identifier, "ambid_samples_received_total{role=\"identifier\"}"), 1e5) << identifier;
+  EXPECT_GT(metric(identifier, "ambid_identification_seconds_count{role=\"identifier\"}"), 40) << identifier;
+  // Exported; its value depends on whether this machine let the identifier keep up.
+  EXPECT_GE(metric(identifier, "ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"}"), 0) << identifier;
+  const std::string diagnostics = http_get(19191, "/metrics");
+  EXPECT_GE(metric(diagnostics, "ambid_alerts_total{level=\"ERROR\",role=\"diagnostics\"}"), 1) << diagnostics;
   // Before the fault nothing was wrong: no alert before the swap's plant time.
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("source sim " + coil1_hot));
