@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <thread>
@@ -166,6 +167,24 @@ TEST(StackMalformed, PlantRefusesExcitationOutsideItsLimits) {
   EXPECT_THAT(log, ::testing::HasSubstr("amplitude 5.000000 V outside 0..0.500000 V"));
   EXPECT_THAT(log, ::testing::HasSubstr("frequency 5000.000000 Hz outside"));
   EXPECT_THAT(log, ::testing::HasSubstr("unknown excitation kind 'square'"));
+}
+
+}  // namespace
+}  // namespace ambid::testing
+
+namespace ambid::testing {
+namespace {
+
+// A method the identifier does not know is refused at start, naming the known ones; the
+// daemon exits 1 before it joins the bus (domain 196).
+TEST(StackMalformed, IdentifierRefusesAnUnknownMethodAtStart) {
+  const auto dir = cli_test::fresh_dir("stack_unknown_method");
+  std::ofstream(dir / "identifier.json") << R"({"method": "least-squares"})";
+  const CommandResult r =
+      run_ambid("daemon identifier --dds cyclone --domain 196 --config " + (dir / "identifier.json").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("unknown method 'least-squares'"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("closed-loop"));
 }
 
 }  // namespace
