@@ -5,7 +5,7 @@
 //     one process over the loopback profile (0 = fastdds, 1 = cyclone), samples received per s
 //     with at most 16 batches in flight;
 //   BM_IdentifierWindows: what the identifier daemon does with them (windows of 2500 samples
-//     collected and identified), samples per s.
+//     collected and identified by its default method, closed-loop), samples per s.
 // The plant -> identifier path sustains the smaller of the two.
 #include <benchmark/benchmark.h>
 

@@ -15,11 +15,11 @@ struct IdentifierConfig {
   sim::ScenarioOptions scenario;
   double window = 0.25;
   double settle = 0.25;
-  ident::DeadbeatOptions deadbeat;
+  ident::IdentifyOptions identify = window_identify_options(kDefaultWindowMethod);
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "identifier config", {"scenario", "window", "settle", "transient_samples"});
+  reject_unknown_keys(j, "identifier config", {"scenario", "method", "window", "settle", "transient_samples"});
   IdentifierConfig c;
   if (const std::string file = config_value<std::string>(j, "scenario", ""); !file.empty())
     c.scenario = read_scenario_file(file);
@@ -27,7 +27,8 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
   c.window = config_value(j, "window", c.window);
   c.settle = config_value(j, "settle", c.settle);
   if (!(c.settle >= 0)) throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.settle));
-  c.deadbeat.transient_samples = config_value(j, "transient_samples", 0);
+  c.identify = window_identify_options(config_value<std::string>(j, "method", kDefaultWindowMethod),
+                                       Eigen::Index(config_value(j, "transient_samples", 0)));
   if (!(c.window > 0)) throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.window));
   return c;
 }
@@ -48,29 +49,48 @@ int run_identifier_daemon(const DaemonOptions& options) {
   prometheus::Histogram& identification_seconds = runtime.metrics.histogram(
       "ambid_identification_seconds", "wall time of one window's identification",
       {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
-  runtime.ready("windows of " + std::to_string(window_samples) + " samples");
+  prometheus::Counter& samples_in =
+      runtime.metrics.counter("ambid_samples_received_total", "samples in the batches taken from the bus", {});
+  // Samples that never reach an identification, by why: a refused batch, the partial window
+  // a sequence gap or a record's end discards, a window the method could not identify.
+  const std::string dropped_help = "samples that reached no identification";
+  prometheus::Counter& dropped_rejected =
+      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "rejected"}});
+  prometheus::Counter& dropped_gap = runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "gap"}});
+  prometheus::Counter& dropped_record_end =
+      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "record_end"}});
+  prometheus::Counter& dropped_unidentified =
+      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
+  runtime.ready("windows of " + std::to_string(window_samples) + " samples, method " + config.identify.method);
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSamples& batch : samples->take()) {
       if (batch.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
+      samples_in.Increment(double(batch.count));
+      const Eigen::Index buffered = window.buffered();
       const SampleWindow::Result r = window.add(batch);
       if (r.outcome == SampleWindow::Outcome::rejected) {
         runtime.metrics.rejected.Increment();
+        dropped_rejected.Increment(double(batch.count));
         runtime.log("batch " + std::to_string(batch.seq) + " rejected: " + r.reason);
         runtime.set_health(bus::AlertLevel::warn, "samples rejected: " + r.reason);
+      } else if (r.outcome == SampleWindow::Outcome::restarted && buffered > 0) {
+        (batch.seq == 0 ? dropped_record_end : dropped_gap).Increment(double(buffered));
+        if (batch.seq != 0) runtime.log(std::to_string(buffered) + " samples dropped: " + r.reason);
       }
       while (window.full()) {
         const Experiment w = window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
-          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.deadbeat);
+          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.identify);
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
           runtime.metrics.published.Increment();
         } catch (const Error& e) {
           runtime.metrics.rejected.Increment();
+          dropped_unidentified.Increment(double(w.samples()));
           runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified: " + e.what());
         }
       }

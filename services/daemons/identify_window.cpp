@@ -1,6 +1,8 @@
 #include "services/daemons/identify_window.hpp"
 
-#include "identifier/amb1dof_deadbeat.hpp"
+#include <algorithm>
+
+#include "core/error.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -22,27 +24,46 @@ bus::StateSpace to_message(const System& s) {
 std::vector<bus::Estimate> estimates(const std::map<std::string, double>& values,
                                      const std::map<std::string, double>& sigmas) {
   std::vector<bus::Estimate> out;
-  for (const auto& [name, value] : values) out.push_back({name, value, sigmas.at(name)});
+  for (const auto& [name, value] : values) {
+    const auto sigma = sigmas.find(name);
+    out.push_back({name, value, sigma == sigmas.end() ? 0.0 : sigma->second});
+  }
   return out;
 }
 
 }  // namespace
 
+ident::IdentifyOptions window_identify_options(const std::string& method, Eigen::Index skip_samples) {
+  const auto& methods = ident::identification_methods();
+  if (std::find(methods.begin(), methods.end(), method) == methods.end()) {
+    std::string known;
+    for (const auto& m : methods) known += (known.empty() ? "" : ", ") + m;
+    throw Error("identifier: unknown method '" + method + "' (expected one of " + known + ")");
+  }
+  if (skip_samples < 0) throw Error("identifier: skipped samples must be >= 0, got " + std::to_string(skip_samples));
+  ident::IdentifyOptions o;
+  o.method = method;
+  o.skip_samples = skip_samples;
+  o.validation_fraction = 0.0;  // every sample of a window goes into its estimate
+  return o;
+}
+
 bus::IdentifiedModel identify_window(const Experiment& window, const std::string& plant_id, std::uint64_t seq,
-                                     const ident::DeadbeatOptions& options) {
-  const ident::Amb1dofIdentification id = ident::identify_amb1dof_deadbeat(window, options);
+                                     const ident::IdentifyOptions& options) {
+  const Model id = ident::identify_experiment(window, options);
   bus::IdentifiedModel m;
   m.plant_id = plant_id;
   m.seq = seq;
   m.time = window.t(window.samples() - 1);
   m.window = double(window.samples()) * window.sample_time;
   m.plant_model = window.plant.model;
-  m.method = kDeadbeatMethod;
+  m.method = options.method;
   m.sample_time = window.sample_time;
-  m.discrete = to_message(id.realization.system);
-  m.continuous = to_message(id.continuous);
-  m.parameters = estimates(id.parameters, id.parameter_uncertainty);
-  m.physical = estimates(id.physical, id.physical_uncertainty);
+  m.discrete = to_message(id.discrete);
+  if (id.continuous) m.continuous = to_message(*id.continuous);
+  m.parameters = estimates(id.parameters, id.uncertainty);
+  m.physical = estimates(id.physical, id.uncertainty);
+  for (const auto& [output, nrmse] : id.fit_nrmse) m.nrmse.push_back({output, nrmse});
   return m;
 }
 

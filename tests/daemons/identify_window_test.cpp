@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/error.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/daemons/sample_window.hpp"
 
@@ -17,29 +18,64 @@ double physical(const bus::IdentifiedModel& m, const std::string& name) {
   return 0.0;
 }
 
-// A window from the middle of a record, where the controller's integrators are far from zero,
-// identified with them taken as zero: the offset term absorbs that, so the nominal plant's
-// coil resistances come out within 0.1 % (measured: 0.01 %).
-TEST(IdentifyWindow, MidRecordWindowGivesTrueCoilResistances) {
-  sim::ScenarioOptions o;
-  o.duration = 1.0;
-  const sim::Scenario scenario = sim::build_scenario(o);
+// The second 0.25 s window of a simulated record, cut from its batches as the daemon does.
+Experiment second_window(const sim::ScenarioOptions& o) {
   const Experiment record = sim::simulate_scenario(o);
-  SampleWindow window(scenario.header, 2500);
+  SampleWindow window(sim::build_scenario(o).header, 2500);
   for (std::uint64_t seq = 0; seq < 20; ++seq)
-    ASSERT_NE(window.add(sample_batch(record, Eigen::Index(seq) * 500, 500, "p", seq, 0.0)).outcome,
+    EXPECT_NE(window.add(sample_batch(record, Eigen::Index(seq) * 500, 500, "p", seq, 0.0)).outcome,
               SampleWindow::Outcome::rejected);
   window.take();  // the first 0.25 s
-  const Experiment w = window.take();
-  EXPECT_NEAR(w.t(0), 0.25, 1e-9);
-  const bus::IdentifiedModel m = identify_window(w, "p", 1);
+  return window.take();
+}
+
+sim::ScenarioOptions one_second(std::map<std::string, double> truth = {}) {
+  sim::ScenarioOptions o;
+  o.duration = 1.0;
+  o.true_parameters = std::move(truth);
+  return o;
+}
+
+// A window from the middle of a record, where the controller's integrators are far from zero,
+// identified with them taken as zero by the default closed-loop method (which needs no
+// controller state): the coil resistances come out within 0.1 % of the truth, nominal and with
+// coil 1 20 % hot (the off-nominal case deadbeat reads as +9.9 %).
+TEST(IdentifyWindow, ClosedLoopMidRecordWindowGivesTrueCoilResistances) {
+  for (const double r1 : {17.5, 21.0}) {
+    const Experiment w = second_window(one_second({{"R1", r1}}));
+    EXPECT_NEAR(w.t(0), 0.25, 1e-9);
+    const bus::IdentifiedModel m = identify_window(w, "p", 1);
+    EXPECT_NEAR(physical(m, "R1") / r1, 1.0, 1e-3);
+    EXPECT_NEAR(physical(m, "R2") / 17.5, 1.0, 1e-3);
+    EXPECT_NEAR(m.time, w.t(2499), 1e-12);
+    EXPECT_NEAR(m.window, 0.25, 1e-12);
+    EXPECT_EQ(m.method, "closed-loop");
+    EXPECT_EQ(m.physical.size(), 9u);
+    for (const auto& e : m.physical) EXPECT_EQ(e.sigma, 0.0) << e.name << ": closed-loop reports no sigma";
+  }
+}
+
+// deadbeat on the same nominal window: the offset term absorbs the zero integrator state, and
+// it reports sigmas.
+TEST(IdentifyWindow, DeadbeatMidRecordWindowGivesTrueCoilResistancesWithSigmas) {
+  const sim::ScenarioOptions o = one_second();
+  const Experiment w = second_window(o);
+  const bus::IdentifiedModel m = identify_window(w, "p", 1, window_identify_options("deadbeat"));
   for (const char* name : {"R1", "R2"})
-    EXPECT_NEAR(physical(m, name) / scenario.header.plant.parameters.at(name), 1.0, 1e-3) << name;
-  EXPECT_NEAR(m.time, w.t(2499), 1e-12);
-  EXPECT_NEAR(m.window, 0.25, 1e-12);
-  EXPECT_EQ(m.method, kDeadbeatMethod);
-  EXPECT_EQ(m.physical.size(), 9u);
+    EXPECT_NEAR(physical(m, name) / sim::build_scenario(o).header.plant.parameters.at(name), 1.0, 1e-3) << name;
+  EXPECT_EQ(m.method, "deadbeat");
   for (const auto& e : m.physical) EXPECT_GT(e.sigma, 0.0) << e.name;
+}
+
+TEST(IdentifyWindow, UnknownMethodIsRefusedNamingTheKnownOnes) {
+  try {
+    window_identify_options("least-squares");
+    FAIL() << "accepted an unknown method";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown method 'least-squares'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("closed-loop"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(window_identify_options("closed-loop", -1), Error);
 }
 
 TEST(SampleWindow, RejectsMalformedAndRestartsOnGaps) {

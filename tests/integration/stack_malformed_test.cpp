@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <thread>
@@ -111,6 +112,22 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_messages_received_total{role=\"identifier\"} " +
                                             std::to_string(received_before + 13)));
   EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_identification_seconds_count{role=\"identifier\"} 1"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_received_total{role=\"identifier\"} " +
+                                            std::to_string((received_before + 13) * 500)));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"rejected\",role=\"identifier\"} 1500"));
+  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"} 0"));
+  // A sequence gap: 7 batches (0.25 s settling, 1000 samples buffered), then batch 8 without 7:
+  // the 1000 buffered samples are dropped and counted.
+  for (std::uint64_t seq = 0; seq < 7; ++seq) samples->write(good_batch(e, seq));
+  samples->write(good_batch(e, 8));
+  ASSERT_TRUE(wait_for(*b, 5s, [&] {
+    identifier_health();
+    return last->received == received_before + 21;
+  })) << last->received - received_before;
+  const std::string after_gap = http_get(19175, "/metrics");
+  EXPECT_THAT(after_gap, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"} 1000"));
+  EXPECT_THAT(after_gap, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"unidentified\",role=\"identifier\"} 0"));
+  EXPECT_THAT(stack.log("identifier"), ::testing::HasSubstr("1000 samples dropped: batch 8 does not follow the previous one"));
   const std::string log = stack.log("identifier");
   EXPECT_THAT(log, ::testing::HasSubstr("a sample value is not finite"));
   EXPECT_THAT(log, ::testing::HasSubstr("signal names differ"));
@@ -150,6 +167,24 @@ TEST(StackMalformed, PlantRefusesExcitationOutsideItsLimits) {
   EXPECT_THAT(log, ::testing::HasSubstr("amplitude 5.000000 V outside 0..0.500000 V"));
   EXPECT_THAT(log, ::testing::HasSubstr("frequency 5000.000000 Hz outside"));
   EXPECT_THAT(log, ::testing::HasSubstr("unknown excitation kind 'square'"));
+}
+
+}  // namespace
+}  // namespace ambid::testing
+
+namespace ambid::testing {
+namespace {
+
+// A method the identifier does not know is refused at start, naming the known ones; the
+// daemon exits 1 before it joins the bus (domain 196).
+TEST(StackMalformed, IdentifierRefusesAnUnknownMethodAtStart) {
+  const auto dir = cli_test::fresh_dir("stack_unknown_method");
+  std::ofstream(dir / "identifier.json") << R"({"method": "least-squares"})";
+  const CommandResult r =
+      run_ambid("daemon identifier --dds cyclone --domain 196 --config " + (dir / "identifier.json").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("unknown method 'least-squares'"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("closed-loop"));
 }
 
 }  // namespace

@@ -52,7 +52,7 @@ Stack::Stack(const std::string& name, int domain, const std::map<std::string, st
   std::ofstream(dir_ / "identifier.json") << R"({"window": 0.25, "settle": 0.25})";
   std::ofstream(dir_ / "diagnostics.json")
       << R"({"store": ")" << store().string()
-      << R"(", "learning_windows": 10, "persist_windows": 3, "stale_timeout": 1.0, "silence": 2.0})";
+      << R"(", "learning_windows": 40, "persist_windows": 20, "stale_timeout": 1.0, "silence": 2.0})";
 }
 
 Stack::~Stack() {

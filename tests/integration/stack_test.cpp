@@ -1,7 +1,8 @@
 // The whole service as separate processes over DDS (loopback profile, one domain per test):
 // a simulated bearing, then its plant source swapped to the same bearing with R1 +20 %
 // (deploy/config/coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
-// coil 1 resistance within a bounded time. Each test takes 10-20 s.
+// coil 1 resistance, with the identified R1 of about 21 ohm, within a bounded time. Each test
+// takes 10-20 s.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -26,8 +27,9 @@ void start_all(Stack& stack) {
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
 }
 
-// Swaps the source once the baseline is learned (10 windows of 0.25 s plant time at 10x real
-// time: 0.25 s wall plus discovery), then waits at most 30 s for the ERROR about R1.
+// Swaps the source once the baseline is learned (40 windows of 0.25 s, three per 1 s record:
+// 13.3 s plant time, 1.3 s wall at 10x real time, plus discovery), then waits at most 30 s for
+// the ERROR about R1.
 void expect_coil1_error(Stack& stack) {
   std::this_thread::sleep_for(std::chrono::seconds(4));
   const CommandResult swap = stack.ambid("source set sim " + coil1_hot);
@@ -37,16 +39,43 @@ void expect_coil1_error(Stack& stack) {
   ASSERT_EQ(alerts.status, 0) << alerts.output << stack.log("diagnostics");
   EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
   EXPECT_THAT(alerts.output, HasSubstr("coil 1 resistance"));
+  // The value the ERROR carries is the identified R1: the truth 21 ohm within 5 %.
+  const auto line = alerts.output.find("ERROR  bearing-1  R1");
+  ASSERT_NE(line, std::string::npos) << alerts.output;
+  const auto value = alerts.output.find("  value ", line);
+  ASSERT_NE(value, std::string::npos) << alerts.output;
+  EXPECT_NEAR(std::stod(alerts.output.substr(value + 8)), 21.0, 0.05 * 21.0) << alerts.output;
+}
+
+// The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
+double metric(const std::string& text, const std::string& line) {
+  const auto at = text.find(line + " ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
 }
 
 TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
   Stack stack("stack_cyclone", 170);
-  start_all(stack);
+  stack.start("diagnostics", {"--metrics-port", "19191"});
+  stack.start("identifier", {"--metrics-port", "19190"});
+  stack.start("plant");
   expect_coil1_error(stack);
+  // The metrics of the run: samples in, windows identified and timed, the ERROR counted.
+  const std::string identifier = http_get(19190, "/metrics");
+  EXPECT_GT(metric(identifier, "ambid_samples_received_total{role=\"identifier\"}"), 1e5) << identifier;
+  EXPECT_GT(metric(identifier, "ambid_identification_seconds_count{role=\"identifier\"}"), 40) << identifier;
+  // Exported; its value depends on whether this machine let the identifier keep up.
+  EXPECT_GE(metric(identifier, "ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"}"), 0) << identifier;
+  const std::string diagnostics = http_get(19191, "/metrics");
+  EXPECT_GE(metric(diagnostics, "ambid_alerts_total{level=\"ERROR\",role=\"diagnostics\"}"), 1) << diagnostics;
   // Before the fault nothing was wrong: no alert before the swap's plant time.
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("source sim " + coil1_hot));
   EXPECT_THAT(stack.log("diagnostics"), ::testing::Not(HasSubstr("rejected")));
+  // Coil 2 is untouched and closed-loop reads it so (deadbeat's off-nominal bias moved R2 by
+  // -9 % and raised coil 2 alerts here).
+  const CommandResult all = stack.ambid("alerts --wait 1");
+  EXPECT_THAT(all.output, HasSubstr("R1  coil_resistance (channel 1)")) << all.output;
+  EXPECT_THAT(all.output, ::testing::Not(HasSubstr("  R2  "))) << all.output;
 }
 
 // Samples Fast DDS -> Cyclone, models Cyclone -> Fast DDS, alerts Fast DDS -> Cyclone (the CLI).
@@ -78,15 +107,19 @@ TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   ASSERT_EQ(ok.status, 0) << ok.output << stack.log("diagnostics");
   EXPECT_THAT(ok.output, HasSubstr("estimates resumed"));
   // The trend history is intact: what was stored before the restart is still there, unchanged,
-  // followed by the new estimates (nominal R1 17.5 ohm within 1 %).
+  // followed by the new estimates: 1 s more is ~30 windows at 10x real time, whose mean is
+  // the nominal R1 17.5 ohm within 2.5 % (one window scatters ~3 % with the sensor noise).
+  std::this_thread::sleep_for(std::chrono::seconds(1));
   const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
-  ASSERT_GT(after.size(), before.size());
+  ASSERT_GT(after.size(), before.size() + 10);
   for (std::size_t k = 0; k < before.size(); ++k) {
     EXPECT_EQ(after[k].time, before[k].time);
     EXPECT_EQ(after[k].value, before[k].value);
   }
   for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
-  EXPECT_NEAR(after.back().value, 17.5, 0.175);
+  double sum = 0.0;
+  for (std::size_t k = before.size(); k < after.size(); ++k) sum += after[k].value;
+  EXPECT_NEAR(sum / double(after.size() - before.size()), 17.5, 0.025 * 17.5);
 }
 
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
@@ -132,7 +165,8 @@ TEST(Stack, FrfDaemonPublishesSensitivityPeaksAndZone) {
 }
 
 // `ambid record` writes an experiment file from the bus that the reader accepts; its samples
-// are the plant's nominal closed loop (x stays within a micrometre of the operating point).
+// are the plant's nominal closed loop (x stays within 5 um of the operating point under the
+// 1 V PRBS: its standard deviation is ~0.4 um).
 TEST(Stack, RecordWritesAnExperimentFromTheBus) {
   Stack stack("stack_record", 177);
   stack.start("plant");
@@ -145,8 +179,8 @@ TEST(Stack, RecordWritesAnExperimentFromTheBus) {
   EXPECT_DOUBLE_EQ(e.sample_time, 1e-4);
   EXPECT_EQ(e.plant.model, "amb1dof_voltage");
   ASSERT_TRUE(e.controller);
-  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 1e-6);
-  EXPECT_GT(e.r.cwiseAbs().maxCoeff(), 0.04);  // the PRBS of 0.05 V was recorded
+  EXPECT_LT(e.y_deviation().col(0).cwiseAbs().maxCoeff(), 5e-6);
+  EXPECT_NEAR(e.r.cwiseAbs().maxCoeff(), 1.0, 1e-9);  // the PRBS of 1 V was recorded
 }
 
 }  // namespace
