@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -167,17 +168,21 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
 
 namespace {
 
-// Magnitude and phase (deg) of every element of a ratio FRF, keyed "output/input".
+// Magnitude and phase (deg) of every element of a ratio FRF, keyed "output/input", on the
+// lines where the measured element is well determined (audit_frf.hpp).
 nlohmann::json ratio_json(const ident::Frf& ratio, const AuditResult& r) {
   nlohmann::json pairs = nlohmann::json::object();
   for (Eigen::Index i = 0; i < ratio.rows(); ++i)
     for (Eigen::Index j = 0; j < ratio.cols(); ++j) {
-      std::vector<double> magnitude, phase;
-      for (const auto& v : ratio.element(i, j)) {
+      std::vector<double> frequency, magnitude, phase;
+      for (Eigen::Index k : determined_lines(r.frfs, i, j)) {
+        const std::complex<double> v = ratio.value[std::size_t(k)](i, j);
+        frequency.push_back(ratio.frequency_hz[k]);
         magnitude.push_back(std::abs(v));
         phase.push_back(std::arg(v) * 180.0 / 3.141592653589793);
       }
-      pairs[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(j)]] = {{"magnitude", magnitude}, {"phase_deg", phase}};
+      pairs[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(j)]] = {
+          {"frequency_hz", frequency}, {"magnitude", magnitude}, {"phase_deg", phase}};
     }
   return pairs;
 }
@@ -231,7 +236,7 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
   if (f.lines() > 0)
     frf_ratio = {{"estimator", "indirect closed-loop Welch G = S_yr S_ur^+, measured / model, element by element"},
                  {"segment", "validation"},
-                 {"frequency_hz", std::vector<double>(f.frequency_hz.data(), f.frequency_hz.data() + f.lines())},
+                 {"lines", "inputs coherent with r (>= 0.5) and var G_meas / |G_meas|^2 <= 0.01"},
                  {"nominal", ratio_json(f, r)},
                  {"extended", ratio_json(r.frfs.ratio_extended, r)}};
   return {{"format", "ambid-audit/1"},

@@ -14,6 +14,7 @@ ident::Frf keep_lines(const ident::Frf& frf, const std::vector<Eigen::Index>& li
   for (std::size_t k = 0; k < lines.size(); ++k) {
     out.frequency_hz[Eigen::Index(k)] = frf.frequency_hz[lines[k]];
     out.value.push_back(frf.value[std::size_t(lines[k])]);
+    if (frf.has_variance()) out.variance.push_back(frf.variance[std::size_t(lines[k])]);
   }
   return out;
 }
@@ -59,6 +60,16 @@ AuditFrfs audit_frfs(const Experiment& measured, const ReplayedLoop& nominal, co
     return {};  // too short for Welch averaging, or a singular line: no frequency view
   }
   return out;
+}
+
+std::vector<Eigen::Index> determined_lines(const AuditFrfs& frfs, Eigen::Index i, Eigen::Index j,
+                                           double max_relative_variance) {
+  std::vector<Eigen::Index> lines;
+  if (!frfs.measured.has_variance()) return lines;
+  for (Eigen::Index k = 0; k < frfs.measured.lines(); ++k)
+    if (frfs.measured.variance[std::size_t(k)](i, j) <= max_relative_variance * std::norm(frfs.measured.value[std::size_t(k)](i, j)))
+      lines.push_back(k);
+  return lines;
 }
 
 }  // namespace ambid::diagnostics

@@ -104,7 +104,7 @@ report::Figure bode(const std::string& title, const std::string& label, const id
 // measured / model for every plant pair: 0 dB and 0 deg where the model is right.
 report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<std::string>& inputs) {
   report::Figure fig;
-  fig.title = "Measured / nominal model plant FRF, every output/input pair (excited band)";
+  fig.title = "Measured / nominal model plant FRF per output/input pair (well-determined lines)";
   fig.share_x = true;
   report::Axes magnitude, phase;
   magnitude.log_x = phase.log_x = true;
@@ -112,12 +112,19 @@ report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<s
   phase.y_label = "phase [deg]";
   phase.x_label = "f [Hz]";
   const ident::Frf& q = r.frfs.ratio_nominal;
-  const std::vector<double> f = to_vector(q.frequency_hz);
   for (Eigen::Index i = 0; i < q.rows(); ++i)
     for (Eigen::Index j = 0; j < q.cols(); ++j) {
+      const std::vector<Eigen::Index> lines = diagnostics::determined_lines(r.frfs, i, j);
+      if (lines.size() < 2) continue;
+      std::vector<double> f;
+      Eigen::VectorXcd g(Eigen::Index(lines.size()));
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        f.push_back(q.frequency_hz[lines[k]]);
+        g[Eigen::Index(k)] = q.value[std::size_t(lines[k])](i, j);
+      }
       const std::string name = r.outputs[std::size_t(i)] + "/" + inputs[std::size_t(j)];
-      magnitude.series.push_back(report::line(name, f, decibels(q.element(i, j))));
-      phase.series.push_back(report::line(name, f, degrees(q.element(i, j))));
+      magnitude.series.push_back(report::markers(name, f, decibels(g)));
+      phase.series.push_back(report::markers(name, f, degrees(g)));
     }
   fig.axes = {magnitude, phase};
   return fig;
