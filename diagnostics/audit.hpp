@@ -12,8 +12,18 @@
 // nrmse_total * (1 + complexity_penalty * parameters) ranks them. The best candidate becomes
 // the cause only when its validation improvement is beyond what noise explains
 // (audit_significance.hpp: z above the Bonferroni threshold for `false_acceptance` over the
-// fitted candidates) and it lowers nrmse_total. Otherwise cause = "none"; on data where the
-// nominal model is right this happens with probability at most `false_acceptance`.
+// fitted candidates) and it lowers nrmse_total; otherwise cause = "none". On data where the
+// nominal model is right a cause is named with probability at most `false_acceptance`.
+// Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
+// correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
+//
+// audit.json has the contract's keys exactly, plus these additive ones: per finding
+// "significance" {z, p_value, nrmse2_reduction}; "acceptance" {rule,
+// false_acceptance_probability, z_threshold}; "frf_ratio" {estimator, segment, lines,
+// nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
+// segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
+// "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
+// excitation_rms, log_ratio, log_ratio_se}], z, dependent}.
 #include <string>
 #include <vector>
 

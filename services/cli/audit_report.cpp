@@ -182,7 +182,12 @@ std::string audit_verdict(const diagnostics::AuditResult& r) {
     first = false;
   }
   s << "), the error on data the fit did not see falls from NRMSE " << f.nrmse_total_before << " to "
-    << f.nrmse_total_after << "; noise alone would explain such a gain with probability " << f.test.p_value << ".";
+    << f.nrmse_total_after << "; noise alone would explain such a gain with probability ";
+  if (f.test.p_value < 1e-6)
+    s << "below 1e-6";
+  else
+    s << f.test.p_value;
+  s << " (z = " << f.test.z << ").";
   if (r.amplitude.dependent) s << " The nominal model's error grows with the excitation amplitude: a nonlinear effect.";
   return s.str();
 }
