@@ -75,7 +75,7 @@ TEST(AuditAmplitude, ALinearEffectHasTheSameErrorAtEveryAmplitude) {
 
 // The excitation level steps 0 / 1 / 2 V (common mode) in thirds. Saturation (beta drawn in
 // 0.3..0.5) makes the coils' incremental inductance depend on the flux level, so the i/u error
-// level changes between the parts (measured max |z| 5.3-6.1 over seeds 3-8 at beta 0.3); the
+// level changes between the parts (measured max |z| 5.1-6.1 over seeds 3-8 at beta 0.3); the
 // linear coil effects keep it (measured max |z| <= 1.3).
 TEST(AuditAmplitude, SaturationDependsOnTheLevelLinearCoilEffectsDoNot) {
   for (std::uint64_t seed : {3u, 4u, 5u}) {
