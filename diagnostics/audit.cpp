@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <sstream>
 
 #include "core/error.hpp"
-#include "identifier/frf_welch.hpp"
 
 namespace ambid::diagnostics {
 namespace {
@@ -16,21 +16,6 @@ struct Candidate {
 };
 
 double total(const Eigen::VectorXd& per_output) { return per_output.mean(); }
-
-// T_yr of outputs `y` (deviations) on the validation segment; empty when it is too short.
-ident::Frf loop_frf(const Eigen::MatrixXd& y, const Experiment& measured, const Segment& validation) {
-  ident::WelchFrfOptions o;
-  o.sample_time = measured.sample_time;
-  o.segment_samples = std::min<Eigen::Index>(1024, validation.size() / 3);
-  try {
-    return ident::estimate_welch_frf(measured.r_deviation().middleRows(validation.begin, validation.size()),
-                                     measured.u_deviation().middleRows(validation.begin, validation.size()),
-                                     y.middleRows(validation.begin, validation.size()), o)
-        .output_from_reference;
-  } catch (const Error&) {
-    return {};
-  }
-}
 
 // The strongest line over the outputs' residuals, each normalised by its measured spread.
 Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measured, double dt, double f_lo,
@@ -76,6 +61,7 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
   if (f.effect.name == "harmonic_disturbance" || f.effect.name == "flexible_mode")
     s << "; residual line at " << f.effect.at("f") << " Hz";
   s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
+  s << "; validation improvement z = " << f.test.z << " (accepted above " << r.z_threshold << ")";
   return s.str();
 }
 
@@ -83,18 +69,22 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
 
 AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   require_auditable(measured);
+  acceptance_threshold(options.false_acceptance, 1);  // refuses a bad probability before the fits
   if (!(options.estimation_fraction > 0.1 && options.estimation_fraction < 0.9))
     throw Error("audit: estimation_fraction must be in (0.1, 0.9), got " + std::to_string(options.estimation_fraction));
   const double dt = measured.sample_time;
   const Eigen::Index N = measured.samples();
   AuditResult r;
   r.outputs = measured.y_names;
+  r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
   r.validation = {r.estimation.end, N};
   r.t = measured.t;
   r.measured = measured.y_deviation();
+  ReplayedLoop nominal;
   try {
-    r.nominal = replay_outputs(measured, {}, N);
+    nominal = replay_loop(measured, {}, N);
+    r.nominal = nominal.y;
   } catch (const InsufficientData&) {
     throw;
   } catch (const Error& e) {
@@ -138,35 +128,66 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     AuditFinding f;
     f.effect = fit.effect;
     f.nrmse_total_before = r.baseline_total;
+    Eigen::MatrixXd y;
     try {
-      f.nrmse_after = nrmse(r.measured, replay_outputs(measured, {fit.effect}, N), r.validation);
+      y = replay_outputs(measured, {fit.effect}, N);
     } catch (const InsufficientData&) {
       throw;
     } catch (const Error&) {
       continue;  // fitted on one part, it cannot even be simulated over the whole record
     }
+    f.nrmse_after = nrmse(r.measured, y, r.validation);
+    f.test = improvement_test(r.measured, r.nominal, y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
     f.score = f.nrmse_total_after * (1.0 + options.complexity_penalty * double(fit.effect.parameters.size()));
     r.findings.push_back(std::move(f));
   }
   std::stable_sort(r.findings.begin(), r.findings.end(),
                    [](const AuditFinding& a, const AuditFinding& b) { return a.score < b.score; });
+  r.false_acceptance = options.false_acceptance;
+  r.z_threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(r.findings.size())));
   for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
-  if (!r.findings.empty() && r.findings.front().score < (1.0 - options.min_gain) * r.baseline_total) {
-    r.findings.front().accepted = true;
-    r.cause = r.findings.front().effect.name;
-    r.extended_effects = {r.findings.front().effect};
+  if (!r.findings.empty()) {
+    AuditFinding& best = r.findings.front();
+    if (best.test.reduction > 0.0 && best.test.z > r.z_threshold && best.nrmse_total_after < r.baseline_total) {
+      best.accepted = true;
+      r.cause = best.effect.name;
+      r.extended_effects = {best.effect};
+    }
   }
-  r.extended = r.extended_effects.empty() ? r.nominal : replay_outputs(measured, r.extended_effects, N);
+  const ReplayedLoop extended = r.extended_effects.empty() ? nominal : replay_loop(measured, r.extended_effects, N);
+  r.extended = extended.y;
   const Eigen::Index L = std::min<Eigen::Index>(512, r.validation.size());
   r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);
   r.residual_extended =
       welch_spectrum((r.measured - r.extended).middleRows(r.validation.begin, r.validation.size()), dt, L);
-  r.loop_measured = loop_frf(r.measured, measured, r.validation);
-  r.loop_nominal = loop_frf(r.nominal, measured, r.validation);
-  r.loop_extended = loop_frf(r.extended, measured, r.validation);
+  r.frfs = audit_frfs(measured, nominal, extended, r.validation);
+  r.amplitude = amplitude_dependence(measured, nominal);
   return r;
 }
+
+namespace {
+
+// Magnitude and phase (deg) of every element of a ratio FRF, keyed "output/input", on the
+// lines where the measured element is well determined (audit_frf.hpp).
+nlohmann::json ratio_json(const ident::Frf& ratio, const AuditResult& r) {
+  nlohmann::json pairs = nlohmann::json::object();
+  for (Eigen::Index i = 0; i < ratio.rows(); ++i)
+    for (Eigen::Index j = 0; j < ratio.cols(); ++j) {
+      std::vector<double> frequency, magnitude, phase;
+      for (Eigen::Index k : determined_lines(r.frfs, i, j)) {
+        const std::complex<double> v = ratio.value[std::size_t(k)](i, j);
+        frequency.push_back(ratio.frequency_hz[k]);
+        magnitude.push_back(std::abs(v));
+        phase.push_back(std::arg(v) * 180.0 / 3.141592653589793);
+      }
+      pairs[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(j)]] = {
+          {"frequency_hz", frequency}, {"magnitude", magnitude}, {"phase_deg", phase}};
+    }
+  return pairs;
+}
+
+}  // namespace
 
 nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_file,
                           const std::string& extended_model_file) {
@@ -182,13 +203,54 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
                         {"parameters", f.effect.parameters},
                         {"nrmse_total_before", f.nrmse_total_before},
                         {"nrmse_total_after", f.nrmse_total_after},
-                        {"evidence", f.evidence}});
+                        {"evidence", f.evidence},
+                        {"significance", {{"z", f.test.z}, {"p_value", f.test.p_value},
+                                          {"nrmse2_reduction", f.test.reduction}}}});
+  nlohmann::json correlation = nlohmann::json::object();
+  for (std::size_t j = 0; j < r.outputs.size(); ++j)
+    for (Eigen::Index i = 0; i < r.excitation_correlation.cols(); ++i)
+      correlation[r.outputs[j]]["r" + std::to_string(i + 1)] = r.excitation_correlation(Eigen::Index(j), i);
+  const AmplitudeDependence& a = r.amplitude;
+  auto per_pair = [&](const auto& m) {
+    nlohmann::json j = nlohmann::json::object();
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+      for (Eigen::Index k = 0; k < m.cols(); ++k) j[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(k)]] = m(i, k);
+    return j;
+  };
+  nlohmann::json parts = nlohmann::json::array();
+  for (const auto& p : a.parts)
+    parts.push_back({{"begin", p.samples.begin},
+                     {"end", p.samples.end},
+                     {"excitation_rms", p.excitation_rms},
+                     {"log_ratio", per_pair(p.log_ratio)},
+                     {"log_ratio_se", per_pair(p.log_ratio_se)}});
+  nlohmann::json amplitude = {{"method", "median log|G_meas / G_nominal| per contiguous part, highest vs lowest excitation rms"},
+                              {"determinable", a.determinable},
+                              {"spread", a.spread},
+                              {"parts", parts},
+                              {"z", a.determinable ? per_pair(a.z) : nlohmann::json(nullptr)},
+                              {"dependent", a.dependent}};
+  if (!a.determinable) amplitude["reason"] = a.reason;
+  nlohmann::json frf_ratio = nullptr;
+  const ident::Frf& f = r.frfs.ratio_nominal;
+  if (f.lines() > 0)
+    frf_ratio = {{"estimator", "indirect closed-loop Welch G = S_yr S_ur^+, measured / model, element by element"},
+                 {"segment", "validation"},
+                 {"lines", "inputs coherent with r (>= 0.5) and var G_meas / |G_meas|^2 <= 0.01"},
+                 {"nominal", ratio_json(f, r)},
+                 {"extended", ratio_json(r.frfs.ratio_extended, r)}};
   return {{"format", "ambid-audit/1"},
           {"experiment", experiment_file},
           {"baseline", {{"nrmse", per_output(r.baseline_nrmse)}, {"nrmse_total", r.baseline_total}}},
           {"cause", r.cause},
           {"findings", findings},
-          {"extended_model", extended_model_file}};
+          {"extended_model", extended_model_file},
+          {"frf_ratio", frf_ratio},
+          {"residual_excitation_correlation", correlation},
+          {"amplitude_dependence", amplitude},
+          {"acceptance", {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
+                          {"false_acceptance_probability", r.false_acceptance},
+                          {"z_threshold", r.z_threshold}}}};
 }
 
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& r) {

@@ -9,9 +9,21 @@
 // validation part (the rest). Every candidate (each effect; channel effects once per channel)
 // is screened at +-1 and +-0.3 times its typical size, the best `fitted_candidates` are fitted on the
 // estimation part (audit_fit.hpp) and scored on the validation part: score = validation
-// nrmse_total * (1 + complexity_penalty * parameters). The best candidate becomes the cause
-// only when its score is below (1 - min_gain) times the nominal nrmse_total: a gain that noise
-// alone (fitted on one part, absent in the other) does not produce. Otherwise cause = "none".
+// nrmse_total * (1 + complexity_penalty * parameters) ranks them. The best candidate becomes
+// the cause only when its validation improvement is beyond what noise explains
+// (audit_significance.hpp: z above the Bonferroni threshold for `false_acceptance` over the
+// fitted candidates) and it lowers nrmse_total; otherwise cause = "none". On data where the
+// nominal model is right a cause is named with probability at most `false_acceptance`.
+// Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
+// correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
+//
+// audit.json has the contract's keys exactly, plus these additive ones: per finding
+// "significance" {z, p_value, nrmse2_reduction}; "acceptance" {rule,
+// false_acceptance_probability, z_threshold}; "frf_ratio" {estimator, segment, lines,
+// nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
+// segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
+// "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
+// excitation_rms, log_ratio, log_ratio_se}], z, dependent}.
 #include <string>
 #include <vector>
 
@@ -19,10 +31,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/experiment.hpp"
+#include "diagnostics/audit_amplitude.hpp"
 #include "diagnostics/audit_fit.hpp"
+#include "diagnostics/audit_frf.hpp"
 #include "diagnostics/audit_replay.hpp"
+#include "diagnostics/audit_significance.hpp"
 #include "diagnostics/audit_spectrum.hpp"
-#include "identifier/frf_types.hpp"
 #include "plant_sim/effects.hpp"
 
 namespace ambid::diagnostics {
@@ -30,8 +44,9 @@ namespace ambid::diagnostics {
 struct AuditOptions {
   double estimation_fraction = 0.5;
   int fitted_candidates = 5;
-  double complexity_penalty = 0.02;  // relative score penalty per fitted parameter
-  double min_gain = 0.2;             // relative reduction of nrmse_total needed for a cause
+  double complexity_penalty = 0.02;  // relative score penalty per fitted parameter (ranking)
+  double false_acceptance = 0.01;    // P(a cause is named | the nominal model is right)
+  Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
   FitOptions fit;
 };
 
@@ -40,16 +55,19 @@ struct AuditFinding {
   Eigen::VectorXd nrmse_after;    // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
   double score = 0.0;             // nrmse_total_after with the complexity penalty
+  ImprovementTest test;           // validation improvement against noise
   bool accepted = false;
   std::string evidence;
 };
 
 struct AuditResult {
-  std::vector<std::string> outputs;
+  std::vector<std::string> outputs, inputs;
   Eigen::VectorXd baseline_nrmse;  // nominal model, validation segment
   double baseline_total = 0.0;     // mean of the per-output NRMSE
   std::vector<AuditFinding> findings;  // fitted candidates, best score first
   std::string cause = "none";
+  double false_acceptance = 0.0;  // AuditOptions::false_acceptance
+  double z_threshold = 0.0;       // the z a finding needed to be accepted
   Segment estimation, validation;
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
@@ -58,9 +76,11 @@ struct AuditResult {
   Eigen::MatrixXd measured, nominal, extended;
   Spectrum residual_nominal, residual_extended;
   Eigen::MatrixXd excitation_correlation;
-  // Closed-loop FRFs y/r (Welch, validation segment) of the measurement and of the replayed
-  // nominal and extended models; empty when the segment is too short for them.
-  ident::Frf loop_measured, loop_nominal, loop_extended;
+  // Plant FRFs (indirect closed-loop Welch, validation segment) of the measurement and the
+  // replayed models, their ratios, and the closed-loop y/r; empty when the segment is too short.
+  AuditFrfs frfs;
+  // Whether the nominal residual depends on the excitation amplitude (whole record).
+  AmplitudeDependence amplitude;
   std::vector<sim::Effect> extended_effects;  // the accepted effect, or empty
 };
 

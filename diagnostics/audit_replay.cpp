@@ -16,8 +16,7 @@ void require_auditable(const Experiment& measured) {
     throw InsufficientData("audit: " + std::to_string(measured.samples()) + " samples are too few (need at least 100)");
 }
 
-Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
-                               Eigen::Index samples) {
+ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effect>& effects, Eigen::Index samples) {
   require_auditable(measured);
   if (samples < 1 || samples > measured.samples())
     throw Error("audit: cannot replay " + std::to_string(samples) + " of " + std::to_string(measured.samples()) +
@@ -32,7 +31,13 @@ Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim
   header.y.resize(0, 0);
   header.u.resize(0, 0);
   header.r.resize(0, 0);
-  return sim::run_closed_loop(model, header, options).y_deviation();
+  const Experiment replayed = sim::run_closed_loop(model, header, options);
+  return {replayed.y_deviation(), replayed.u_deviation()};
+}
+
+Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                               Eigen::Index samples) {
+  return replay_loop(measured, effects, samples).y;
 }
 
 Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment) {

@@ -26,6 +26,13 @@ struct Segment {
 Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
                                Eigen::Index samples);
 
+// The same replay with the plant inputs the recorded controller commanded in it.
+struct ReplayedLoop {
+  Eigen::MatrixXd y;  // samples x outputs, deviations
+  Eigen::MatrixXd u;  // samples x inputs, deviations
+};
+ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effect>& effects, Eigen::Index samples);
+
 // Per output j: ||y_meas - y_model|| / ||y_meas - mean(y_meas)|| over `segment`; both
 // matrices as deviations, at least `segment.end` rows. Error for a constant measured output.
 Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment);

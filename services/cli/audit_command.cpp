@@ -32,8 +32,8 @@ void add_audit_command(CLI::App& app) {
   audit->add_option("--estimation-fraction", args->options.estimation_fraction,
                     "leading part of the record used for fitting; the rest validates")
       ->capture_default_str();
-  audit->add_option("--min-gain", args->options.min_gain,
-                    "relative NRMSE reduction an effect needs to be named the cause")
+  audit->add_option("--false-acceptance", args->options.false_acceptance,
+                    "probability of naming a cause when the nominal model is right (noise only)")
       ->capture_default_str();
   audit->add_option("--fitted-candidates", args->options.fitted_candidates,
                     "how many of the screened candidates are fitted")

@@ -64,33 +64,100 @@ report::Figure residual_spectra(const diagnostics::AuditResult& r) {
   return fig;
 }
 
-// |x/r1| and its phase for the measurement and the models (closed loop, validation segment).
-report::Figure loop_bode(const diagnostics::AuditResult& r) {
+std::vector<double> decibels(const Eigen::VectorXcd& g) {
+  std::vector<double> db;
+  for (const auto& v : g) db.push_back(20 * std::log10(std::abs(v)));
+  return db;
+}
+std::vector<double> degrees(const Eigen::VectorXcd& g) {
+  std::vector<double> deg;
+  for (const auto& v : g) deg.push_back(std::arg(v) * 180.0 / 3.141592653589793);
+  return deg;
+}
+
+// Magnitude and phase of element (i, j) of the measured FRF (markers) and of the models.
+report::Figure bode(const std::string& title, const std::string& label, const ident::Frf& measured,
+                    const ident::Frf& nominal, const ident::Frf& extended, bool with_extended, Eigen::Index i,
+                    Eigen::Index j) {
   report::Figure fig;
-  fig.title = "Closed loop " + r.outputs.front() + "/r1: measured, nominal and extended model";
+  fig.title = title;
   fig.share_x = true;
   report::Axes magnitude, phase;
   magnitude.log_x = phase.log_x = true;
-  magnitude.y_label = "|x/r1| [dB]";
+  magnitude.y_label = "|" + label + "| [dB]";
   phase.y_label = "phase [deg]";
   phase.x_label = "f [Hz]";
-  auto add = [&](const ident::Frf& frf, const std::string& label, bool as_markers) {
+  auto add = [&](const ident::Frf& frf, const std::string& name, bool as_markers) {
     if (frf.lines() == 0) return;
-    const Eigen::VectorXcd g = frf.element(0, 0);
-    std::vector<double> db, deg;
-    for (const auto& v : g) {
-      db.push_back(20 * std::log10(std::abs(v)));
-      deg.push_back(std::arg(v) * 180.0 / 3.141592653589793);
-    }
+    const Eigen::VectorXcd g = frf.element(i, j);
     const std::vector<double> f = to_vector(frf.frequency_hz);
-    magnitude.series.push_back(as_markers ? report::markers(label, f, db) : report::line(label, f, db));
-    phase.series.push_back(as_markers ? report::markers(label, f, deg) : report::line(label, f, deg));
+    magnitude.series.push_back(as_markers ? report::markers(name, f, decibels(g)) : report::line(name, f, decibels(g)));
+    phase.series.push_back(as_markers ? report::markers(name, f, degrees(g)) : report::line(name, f, degrees(g)));
   };
-  add(r.loop_measured, "measured", true);
-  add(r.loop_nominal, "nominal model", false);
-  if (!r.extended_effects.empty()) add(r.loop_extended, "extended model", false);
+  add(measured, "measured", true);
+  add(nominal, "nominal model", false);
+  if (with_extended) add(extended, "extended model", false);
   fig.axes = {magnitude, phase};
   return fig;
+}
+
+// measured / model for every plant pair: 0 dB and 0 deg where the model is right.
+report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<std::string>& inputs) {
+  report::Figure fig;
+  fig.title = "Measured / nominal model plant FRF per output/input pair (well-determined lines)";
+  fig.share_x = true;
+  report::Axes magnitude, phase;
+  magnitude.log_x = phase.log_x = true;
+  magnitude.y_label = "|ratio| [dB]";
+  phase.y_label = "phase [deg]";
+  phase.x_label = "f [Hz]";
+  const ident::Frf& q = r.frfs.ratio_nominal;
+  for (Eigen::Index i = 0; i < q.rows(); ++i)
+    for (Eigen::Index j = 0; j < q.cols(); ++j) {
+      const std::vector<Eigen::Index> lines = diagnostics::determined_lines(r.frfs, i, j);
+      if (lines.size() < 2) continue;
+      std::vector<double> f;
+      Eigen::VectorXcd g(Eigen::Index(lines.size()));
+      for (std::size_t k = 0; k < lines.size(); ++k) {
+        f.push_back(q.frequency_hz[lines[k]]);
+        g[Eigen::Index(k)] = q.value[std::size_t(lines[k])](i, j);
+      }
+      const std::string name = r.outputs[std::size_t(i)] + "/" + inputs[std::size_t(j)];
+      magnitude.series.push_back(report::markers(name, f, decibels(g)));
+      phase.series.push_back(report::markers(name, f, degrees(g)));
+    }
+  fig.axes = {magnitude, phase};
+  return fig;
+}
+
+// Per part of the record: the level of the model error, log|G_meas / G_nominal|, per pair.
+std::string amplitude_table(const diagnostics::AuditResult& r) {
+  using report::xml_escape;
+  const auto& a = r.amplitude;
+  std::ostringstream h;
+  h.precision(3);
+  h << "<h2>Dependence on amplitude</h2>\n";
+  if (!a.determinable) {
+    h << "<p>Not determinable: " << xml_escape(a.reason) << ".</p>\n";
+    return h.str();
+  }
+  h << "<p>Median log|G_meas / G_nominal| over the excited lines, per contiguous part of the record: the same in "
+       "every part for a linear model error, changing with the excitation amplitude for a nonlinear one. "
+    << (a.dependent ? "<b>The error depends on the amplitude</b>" : "No amplitude dependence")
+    << " (max |z| " << a.max_abs_z << " between the parts of highest and lowest excitation).</p>\n"
+    << "<table><tr><th>part</th><th>excitation rms</th>";
+  for (const auto& y : r.outputs)
+    for (const auto& u : r.inputs) h << "<th>" << xml_escape(y + "/" + u) << "</th>";
+  h << "</tr>\n";
+  for (const auto& p : a.parts) {
+    h << "<tr><td>" << p.samples.begin << "&ndash;" << p.samples.end << "</td><td>" << p.excitation_rms << "</td>";
+    for (Eigen::Index i = 0; i < p.log_ratio.rows(); ++i)
+      for (Eigen::Index j = 0; j < p.log_ratio.cols(); ++j)
+        h << "<td>" << p.log_ratio(i, j) << " &plusmn; " << p.log_ratio_se(i, j) << "</td>";
+    h << "</tr>\n";
+  }
+  h << "</table>\n";
+  return h.str();
 }
 
 }  // namespace
@@ -101,7 +168,8 @@ std::string audit_verdict(const diagnostics::AuditResult& r) {
   if (r.cause == "none") {
     s << "The nominal model explains this record as well as any single effect of the catalogue: no extension "
          "reduces the validation error (NRMSE "
-      << r.baseline_total << ") by more than fitting noise does. Cause: none.";
+      << r.baseline_total << ") by more than noise explains (z above " << r.z_threshold
+      << ", i.e. a false-acceptance probability of " << r.false_acceptance << "). Cause: none.";
     return s.str();
   }
   const auto& f = r.findings.front();
@@ -114,7 +182,13 @@ std::string audit_verdict(const diagnostics::AuditResult& r) {
     first = false;
   }
   s << "), the error on data the fit did not see falls from NRMSE " << f.nrmse_total_before << " to "
-    << f.nrmse_total_after << ".";
+    << f.nrmse_total_after << "; noise alone would explain such a gain with probability ";
+  if (f.test.p_value < 1e-6)
+    s << "below 1e-6";
+  else
+    s << f.test.p_value;
+  s << " (z = " << f.test.z << ").";
+  if (r.amplitude.dependent) s << " The nominal model's error grows with the excitation amplitude: a nonlinear effect.";
   return s.str();
 }
 
@@ -137,21 +211,38 @@ std::string audit_report_html(const diagnostics::AuditResult& r, const std::stri
       << r.excitation_correlation.row(Eigen::Index(j)).maxCoeff() << "</td></tr>\n";
   h << "<tr><td>total (mean)</td><td>" << r.baseline_total << "</td><td></td></tr></table>\n";
   h << "<h2>Candidate extensions (fitted, best first)</h2>\n<table><tr><th>effect</th><th>channel</th>"
-    << "<th>parameters</th><th>NRMSE after</th><th>accepted</th><th>evidence</th></tr>\n";
+    << "<th>parameters</th><th>NRMSE after</th><th>z (noise: N(0,1))</th><th>accepted</th><th>evidence</th></tr>\n";
   for (const auto& f : r.findings) {
     h << "<tr><td>" << f.effect.name << "</td><td>" << (f.effect.channel ? std::to_string(f.effect.channel) : "&ndash;")
       << "</td><td>";
     for (const auto& p : sim::effect_spec(f.effect.name).parameters)
       h << xml_escape(p.name) << " = " << f.effect.at(p.name) << " " << xml_escape(p.unit) << "<br>";
-    h << "</td><td>" << f.nrmse_total_after << "</td><td>" << (f.accepted ? "yes" : "no") << "</td><td>"
+    h << "</td><td>" << f.nrmse_total_after << "</td><td>" << f.test.z << "</td><td>" << (f.accepted ? "yes" : "no") << "</td><td>"
       << xml_escape(f.evidence) << "</td></tr>\n";
   }
-  h << "</table>\n<h2>Time traces</h2>\n" << inline_svg(time_traces(r));
+  h << "</table>\n<p>A finding is accepted when its validation improvement z exceeds " << r.z_threshold
+    << ": the probability that noise alone gets there for the best of " << r.findings.size() << " fitted candidates is "
+    << r.false_acceptance << ".</p>\n";
+  h << amplitude_table(r);
+  h << "<h2>Time traces</h2>\n" << inline_svg(time_traces(r));
   h << "\n<h2>Residual spectra</h2>\n" << inline_svg(residual_spectra(r));
-  if (r.loop_measured.lines() > 0)
-    h << "\n<h2>Closed-loop frequency response</h2>\n" << inline_svg(loop_bode(r));
-  else
-    h << "\n<p>The validation segment is too short for closed-loop frequency responses.</p>";
+  const bool extended = !r.extended_effects.empty();
+  if (r.frfs.loop_measured.lines() > 0) {
+    h << "\n<h2>Closed-loop frequency response</h2>\n"
+      << inline_svg(bode("Closed loop " + r.outputs.front() + "/r1: measured, nominal and extended model",
+                         r.outputs.front() + "/r1", r.frfs.loop_measured, r.frfs.loop_nominal, r.frfs.loop_extended,
+                         extended, 0, 0));
+  }
+  if (r.frfs.measured.lines() > 0) {
+    h << "\n<h2>Plant frequency response (indirect closed-loop estimate)</h2>\n<p>G = S_yr S_ur<sup>+</sup> of the "
+         "measurement and of each replayed model, on the lines where the inputs are coherent with the excitation.</p>\n"
+      << inline_svg(bode("Plant " + r.outputs.front() + "/" + r.inputs.front() + ": measured, nominal and extended model",
+                         r.outputs.front() + "/" + r.inputs.front(), r.frfs.measured, r.frfs.nominal,
+                         r.frfs.extended, extended, 0, 0))
+      << "\n<h2>Measured / model frequency response ratio</h2>\n" << inline_svg(ratio_plot(r, r.inputs));
+  } else {
+    h << "\n<p>The validation segment is too short (or not excited enough) for frequency responses.</p>";
+  }
   h << "\n</body></html>\n";
   return h.str();
 }

@@ -2,6 +2,7 @@
 // sinusoid (line position and Parseval), the strongest line, the correlation of a delayed
 // copy; the replay of an unchanged nominal record reproduces it; audit.json has the
 // contract's keys; bad experiments are refused clearly.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -83,8 +84,54 @@ TEST(AuditJson, HasTheKeysOfTheContract) {
   EXPECT_LT(f["nrmse_total_after"].get<double>(), f["nrmse_total_before"].get<double>());
   EXPECT_FALSE(f["evidence"].get<std::string>().empty());
   EXPECT_EQ(j["extended_model"], "model-extended.json");
+  // Additive keys: the acceptance rule, each finding's significance, the FRF ratio, the
+  // residual-excitation correlation and the amplitude dependence.
+  EXPECT_DOUBLE_EQ(j["acceptance"]["false_acceptance_probability"].get<double>(), 0.01);
+  EXPECT_GT(f["significance"]["z"].get<double>(), j["acceptance"]["z_threshold"].get<double>());
+  ASSERT_TRUE(j["frf_ratio"].is_object());
+  const auto lines = j["frf_ratio"]["nominal"]["i1/u1"]["frequency_hz"].size();
+  EXPECT_GT(lines, 5u);
+  EXPECT_EQ(j["frf_ratio"]["nominal"]["i1/u1"]["magnitude"].size(), lines);
+  EXPECT_EQ(j["frf_ratio"]["extended"]["i2/u2"]["phase_deg"].size(),
+            j["frf_ratio"]["extended"]["i2/u2"]["frequency_hz"].size());
+  EXPECT_GE(j["residual_excitation_correlation"]["x"]["r1"].get<double>(), 0.0);
+  EXPECT_FALSE(j["amplitude_dependence"]["determinable"].get<bool>());  // one PRBS level
+  EXPECT_FALSE(j["amplitude_dependence"]["reason"].get<std::string>().empty());
   const nlohmann::json model = extended_model_json(testing::simulate_hidden(truth, 0.4, 9), r);
   EXPECT_EQ(model["effects"][0]["effect"], "sensor_gain");
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+// x_meas = (1 + dgain) x with the plant itself unchanged: the indirect estimate of the
+// measured plant is the nominal one with its position row scaled by 1 + dgain, the current rows
+// unchanged, at every frequency; with the true effect in the model the ratio is 1.
+TEST(AuditFrf, SensorGainScalesThePositionRowOfTheRatio) {
+  const double dgain = 0.1;
+  const sim::Effect truth = sim::make_effect("sensor_gain", {{"dgain", dgain}});
+  const Experiment e = testing::simulate_hidden(truth, 1.0, 12);
+  const Segment validation{e.samples() / 2, e.samples()};
+  const AuditFrfs f = audit_frfs(e, replay_loop(e, {}, e.samples()), replay_loop(e, {truth}, e.samples()), validation);
+  ASSERT_GT(f.ratio_nominal.lines(), 20);
+  auto stat = [&](const ident::Frf& q, Eigen::Index i, Eigen::Index j, bool phase) {
+    std::vector<double> v;
+    for (Eigen::Index k : determined_lines(f, i, j)) {
+      const auto z = q.value[std::size_t(k)](i, j);
+      v.push_back(phase ? std::arg(z) * 180.0 / kPi : std::abs(z));
+    }
+    EXPECT_GE(v.size(), 10u) << i << "/" << j;
+    return v.empty() ? 0.0 : median(v);
+  };
+  for (Eigen::Index j = 0; j < 2; ++j) {
+    EXPECT_NEAR(stat(f.ratio_nominal, 0, j, false), 1.0 + dgain, 0.02) << "x/u" << j + 1;
+    EXPECT_NEAR(stat(f.ratio_nominal, 0, j, true), 0.0, 2.0) << "x/u" << j + 1;
+    EXPECT_NEAR(stat(f.ratio_nominal, 1 + j, j, false), 1.0, 0.02) << "i/u" << j + 1;
+    EXPECT_NEAR(stat(f.ratio_extended, 0, j, false), 1.0, 0.02) << "x/u" << j + 1;
+  }
+  EXPECT_EQ(f.loop_measured.lines(), f.loop_nominal.lines());
 }
 
 TEST(AuditInput, RefusesWhatItCannotReplay) {

@@ -79,6 +79,10 @@ TEST(AuditCli, NamesTheHiddenEffectAndWritesItsFiles) {
   EXPECT_THAT(page, HasSubstr("<svg"));
   EXPECT_THAT(page, HasSubstr("Residual spectra"));
   EXPECT_THAT(page, HasSubstr("Closed-loop frequency response"));
+  EXPECT_THAT(page, HasSubstr("Plant frequency response"));
+  EXPECT_THAT(page, HasSubstr("Measured / model frequency response ratio"));
+  EXPECT_THAT(page, HasSubstr("Dependence on amplitude"));
+  EXPECT_TRUE(a["frf_ratio"]["nominal"].contains("x/u1"));
 }
 
 TEST(AuditCli, RefusesWhatItCannotAudit) {
@@ -86,6 +90,9 @@ TEST(AuditCli, RefusesWhatItCannotAudit) {
   expect_failure("audit " + (dir / "missing.json").string() + " --out " + (dir / "a").string(), "missing");
   ASSERT_EQ(run_ambid("sim --duration 0.1 --excitation none --out " + (dir / "quiet").string()).status, 0);
   expect_failure("audit " + (dir / "quiet.json").string() + " --out " + (dir / "a").string(), "no excitation");
+  ASSERT_EQ(run_ambid("sim --duration 0.1 --amplitude 0.3 --out " + (dir / "short").string()).status, 0);
+  expect_failure("audit " + (dir / "short.json").string() + " --false-acceptance 1.5 --out " + (dir / "a").string(),
+                 "false-acceptance probability must be in (0, 1)");
   EXPECT_FALSE(fs::exists(dir / "a" / "audit.json"));
 }
 
