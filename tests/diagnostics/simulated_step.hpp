@@ -1,0 +1,25 @@
+#pragma once
+// The step check of the simulated sequences: a relative step of one true parameter from
+// window kStepAt on, through an engine learning 30 windows; ERROR on that parameter with its
+// fault and channel within 3 windows, and no WARN or ERROR naming any other fault or channel.
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace ambid::diag::testing {
+
+struct StepCase {
+  std::string parameter;
+  std::string fault;
+  int channel;
+};
+void PrintTo(const StepCase& c, std::ostream* os);  // gtest: the parameter
+
+// R1, R2 (coil_resistance 1, 2), kw1, kw2 (amplifier_gain 1, 2).
+const std::vector<StepCase>& step_cases();
+
+// Runs the sequence (seed: SimulatedBearing::seed) and reports failures through gtest.
+void check_step(const StepCase& c, double relative, std::uint64_t seed);
+
+}  // namespace ambid::diag::testing
