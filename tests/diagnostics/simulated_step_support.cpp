@@ -23,7 +23,7 @@ const std::vector<StepCase>& step_cases() {
   return cases;
 }
 
-void check_step(const StepCase& c, double relative, std::uint64_t seed) {
+void check_step(const StepCase& c, double relative, std::uint64_t seed, std::size_t windows) {
   SimulatedBearing bearing;
   bearing.seed = seed;
   bearing.change = [&](std::size_t n) {
@@ -32,7 +32,7 @@ void check_step(const StepCase& c, double relative, std::uint64_t seed) {
   EngineConfig config;
   config.monitor.learning_windows = kLearning;
   const std::string what = c.parameter + " " + std::to_string(relative) + " seed " + std::to_string(seed);
-  const SimulatedSequence r = run_simulated_sequence(bearing, kStepAt + 8, "sim_step_" + c.parameter, config);
+  const SimulatedSequence r = run_simulated_sequence(bearing, kStepAt + windows + 5, "sim_step_" + c.parameter, config);
   std::optional<double> error_time;
   for (const Alert& a : r.alerts) {
     if (!raised(a)) continue;
@@ -42,7 +42,7 @@ void check_step(const StepCase& c, double relative, std::uint64_t seed) {
   }
   ASSERT_TRUE(error_time) << what << describe_alerts(r.alerts);
   const double first_changed = r.windows[kStepAt].time;
-  EXPECT_LE(*error_time, first_changed + 2 * bearing.window + 1e-9) << what << describe_alerts(r.alerts);
+  EXPECT_LE(*error_time, first_changed + static_cast<double>(windows - 1) * bearing.window + 1e-9) << what << describe_alerts(r.alerts);
   EXPECT_GE(*error_time, first_changed) << what << describe_alerts(r.alerts);
 }
 

@@ -16,7 +16,7 @@ class SimulatedStep : public ::testing::TestWithParam<testing::StepCase> {};
 // the identified ks falls ~8 % and kr1, kr2 ~4 % (fault_signatures_test.cpp); those alerts
 // must name coil 1 resistance too (fault_isolation.hpp: the closed-loop signatures).
 TEST_P(SimulatedStep, ErrorNamesTheFaultWithinAFewWindows) {
-  testing::check_step(GetParam(), 0.2, 5000);
+  testing::check_step(GetParam(), 0.2, 5000, 3);
 }
 
 INSTANTIATE_TEST_SUITE_P(Faults, SimulatedStep, ::testing::ValuesIn(testing::step_cases()),
