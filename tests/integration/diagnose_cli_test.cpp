@@ -94,7 +94,9 @@ TEST(DiagnoseCli, HotCoilOneIsAnErrorAndNothingElse) {
   for (const auto& a : d["alerts"]) {
     EXPECT_EQ(a["fault"], "coil_resistance") << a.dump();
     EXPECT_EQ(a["channel"], 1) << a.dump();
-    if (a["level"] == "ERROR") EXPECT_EQ(a["parameter"], "R1") << a.dump();
+    if (a["level"] == "ERROR") {
+      EXPECT_EQ(a["parameter"], "R1") << a.dump();
+    }
   }
 }
 
@@ -106,7 +108,9 @@ TEST(DiagnoseCli, StrongAmplifierTwoIsAnErrorAndNothingElse) {
   for (const auto& a : d["alerts"]) {
     EXPECT_EQ(a["fault"], "amplifier_gain") << a.dump();
     EXPECT_EQ(a["channel"], 2) << a.dump();
-    if (a["level"] == "ERROR") EXPECT_EQ(a["parameter"], "kw2") << a.dump();
+    if (a["level"] == "ERROR") {
+      EXPECT_EQ(a["parameter"], "kw2") << a.dump();
+    }
   }
 }
 
