@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/error.hpp"
 #include "identifier/identify_experiment.hpp"
@@ -92,6 +93,28 @@ TEST(FaultSignatures, AnalyticColumns) {
   EXPECT_NEAR(k1.signature.at("R1"), -share, 3e-3);  // O(h^2) of the central difference
   EXPECT_NEAR(k1.signature.at("kw1"), -share, 3e-3);
   EXPECT_NEAR(k1.signature.at("R2"), 0.0, 1e-6);
+}
+
+// The signatures belong to the loop: with the decentralised PID controller of `ambid sim
+// --controller pid` the currents move differently, but the physics relations still hold.
+TEST(FaultSignatures, FollowTheRecordedController) {
+  sim::ScenarioOptions o;
+  o.excitation = "none";
+  o.controller = "pid";
+  const std::vector<FaultHypothesis> pid = closed_loop_fault_hypotheses(sim::build_scenario(o).header);
+  ASSERT_EQ(pid.size(), default_fault_hypotheses().size());
+  const FaultHypothesis& coil = pid[0];
+  ASSERT_EQ(coil.subject, "coil 1 resistance");
+  EXPECT_NEAR(coil.signature.at("R1"), 1.0, 1e-6);
+  EXPECT_NEAR(coil.signature.at("kr1"), coil.signature.at("kr2"), 1e-6);
+  EXPECT_NEAR(coil.signature.at("ks"), 2.0 * coil.signature.at("kr1"), 1e-3);
+  // Each coil has a proportional current loop of kc = 1000 V/A (scenario.cpp) and the position
+  // integral drives the coils differentially; at rest with i1 = i2 = i,
+  //   R i0 + P - kc (i - i0) = R1 i,  R i0 - P - kc (i - i0) = R i
+  // so i / i0 = 2 (R + kc) / (R1 + R + 2 kc): d log i / d log R1 = -R / (2 (R + kc)) = -0.0086,
+  // against -0.234 with the observer controller, whose current feedback is weaker.
+  const double R = sim::Amb1dofParameters::nominal().R1, kc = 1000.0;
+  EXPECT_NEAR(coil.signature.at("kr1"), -R / (2.0 * (R + kc)), 2e-4);
 }
 
 TEST(FaultSignatures, RefusesWhatItCannotModel) {
