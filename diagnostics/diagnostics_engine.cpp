@@ -108,17 +108,20 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
     Level level;
   };
   std::vector<Current> current;
-  std::vector<Deviation> moved;
+  std::vector<Deviation> deviations;
   for (auto& [key, s] : map) {
     if (key.first != plant_id) continue;
     if (s.level == Level::stale && s.last_time != time) continue;  // still silent
     const SeriesStatus status = s.monitor.status();
     const Level level = config_.policy.level(status, s.episode);
     current.push_back({&key, &s, status, level});
-    if (level == Level::warn || level == Level::error)
-      moved.push_back({key.second, status.relative, status.relative_sigma});
+    // Every parameter past learning enters the fit: one a fault predicts to move and that did
+    // not speaks against that fault.
+    if (!status.learning)
+      deviations.push_back({key.second, status.relative, status.relative_sigma,
+                       level == Level::warn || level == Level::error});
   }
-  const std::vector<Isolation> isolations = isolate(moved, config_.isolation);
+  const std::vector<Isolation> isolations = isolate(deviations, config_.isolation);
 
   for (Current& c : current) {
     Series& s = *c.series;

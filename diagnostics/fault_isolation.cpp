@@ -6,6 +6,8 @@
 #include <set>
 #include <utility>
 
+#include <Eigen/Dense>
+
 #include "core/error.hpp"
 
 namespace ambid::diag {
@@ -31,49 +33,68 @@ const Role kRoles[] = {
     {"ks", {"air_gap", std::nullopt, "negative stiffness"}},
 };
 
-struct Signature {
-  std::string_view fault;
-  std::string_view subject;
-  std::vector<std::pair<std::string_view, double>> ratios;
+// The weighted least-squares fit of some hypotheses to the deviations.
+struct Fit {
+  std::vector<std::size_t> hypotheses;
+  Eigen::VectorXd scale;      // per hypothesis: its relative change
+  Eigen::MatrixXd predicted;  // deviations x hypotheses: scale_h * signature_h,p
+  Eigen::VectorXd sigma;      // per deviation, widened by the model tolerance
+  Eigen::VectorXd residual;   // per deviation, in sigmas
+  double rss = std::numeric_limits<double>::infinity();
+  bool valid = false;
 };
 
-const std::vector<Signature>& signatures() {
-  static const std::vector<Signature> table = {
-      {"coil_resistance", "resistance of both coils (R1, R2 alike)", {{"R1", 1.0}, {"R2", 1.0}}},
-      {"amplifier_gain", "gain of both amplifiers (kw1, kw2 alike)", {{"kw1", 1.0}, {"kw2", 1.0}}},
-      {"sensor_gain", "position sensor gain (kr1, kr2 alike)", {{"kr1", 1.0}, {"kr2", 1.0}}},
-      {"rotor_mass", "rotor mass (ks, kr1, kr2 alike)", {{"ks", 1.0}, {"kr1", 1.0}, {"kr2", 1.0}}},
-      {"air_gap", "air gap (ks : kr1 : kr2 = 1.5 : 1 : 1)", {{"ks", 1.5}, {"kr1", 1.0}, {"kr2", 1.0}}},
-  };
-  return table;
+Fit fit(const std::vector<Deviation>& d, const std::vector<FaultHypothesis>& hyp, std::vector<std::size_t> chosen,
+        const IsolationConfig& config) {
+  const auto n = static_cast<Eigen::Index>(d.size()), k = static_cast<Eigen::Index>(chosen.size());
+  Eigen::MatrixXd S(n, k);
+  Eigen::VectorXd y(n), base_var(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Deviation& dev = d[static_cast<std::size_t>(i)];
+    y(i) = dev.relative;
+    base_var(i) = dev.relative_sigma * dev.relative_sigma + config.sigma_floor * config.sigma_floor;
+    for (Eigen::Index j = 0; j < k; ++j) S(i, j) = hyp[chosen[static_cast<std::size_t>(j)]].signature.at(dev.parameter);
+  }
+  Fit f;
+  f.hypotheses = std::move(chosen);
+  Eigen::VectorXd var = base_var;
+  // Twice: the second pass widens each sigma by the model tolerance of its predicted change.
+  for (int pass = 0; pass < 2; ++pass) {
+    f.scale = Eigen::VectorXd::Zero(k);
+    if (k > 0) {
+      const Eigen::VectorXd w = var.cwiseSqrt().cwiseInverse();
+      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(w.asDiagonal() * S);
+      if (qr.rank() < k) return f;  // the hypotheses are not distinguishable on these parameters
+      f.scale = qr.solve(w.cwiseProduct(y));
+    }
+    f.predicted = S * f.scale.asDiagonal();
+    const Eigen::VectorXd total = f.predicted.rowwise().sum();
+    var = base_var + (config.tolerance * total).cwiseAbs2();
+    f.sigma = var.cwiseSqrt();
+    f.residual = (y - total).cwiseQuotient(f.sigma);
+  }
+  f.rss = f.residual.squaredNorm();
+  f.valid = true;
+  return f;
 }
 
-// How badly the deviations fit the signature: <= 1 fits; infinity when a parameter of the
-// signature did not move (is not among the remaining deviations).
-double misfit(const Signature& sig, const std::vector<Deviation>& moved,
-              const std::vector<bool>& assigned, const IsolationConfig& config) {
-  std::vector<const Deviation*> devs;
-  for (const auto& [parameter, ratio] : sig.ratios) {
-    const auto it = std::find_if(moved.begin(), moved.end(),
-                                 [&](const Deviation& d) { return d.parameter == parameter; });
-    if (it == moved.end() || assigned[static_cast<std::size_t>(it - moved.begin())])
-      return std::numeric_limits<double>::infinity();
-    devs.push_back(&*it);
-  }
-  double sd = 0.0, ss = 0.0;
-  for (std::size_t i = 0; i < devs.size(); ++i) {
-    sd += sig.ratios[i].second * devs[i]->relative;
-    ss += sig.ratios[i].second * sig.ratios[i].second;
-  }
-  const double scale = sd / ss;
-  double worst = 0.0;
-  for (std::size_t i = 0; i < devs.size(); ++i) {
-    const double expected = scale * sig.ratios[i].second;
-    const double allowed = config.tolerance * std::abs(expected) + config.sigma_slack * devs[i]->relative_sigma;
-    const double residual = std::abs(devs[i]->relative - expected);
-    worst = std::max(worst, allowed > 0.0 ? residual / allowed : std::numeric_limits<double>::infinity());
-  }
-  return worst;
+std::size_t unexplained(const Fit& f, const std::vector<Deviation>& d, double slack) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (d[i].moved && std::abs(f.residual(static_cast<Eigen::Index>(i))) > slack) ++count;
+  return count;
+}
+
+// How well the hypotheses' own parameters agree with what moved: +1 for each that moved,
+// -1 for each that did not (or is not among the deviations).
+int own_agreement(const Fit& f, const std::vector<Deviation>& d, const std::vector<FaultHypothesis>& hyp) {
+  int score = 0;
+  for (std::size_t h : f.hypotheses)
+    for (const std::string& own : hyp[h].own) {
+      const auto it = std::find_if(d.begin(), d.end(), [&](const Deviation& dev) { return dev.parameter == own; });
+      score += it != d.end() && it->moved ? 1 : -1;
+    }
+  return score;
 }
 
 }  // namespace
@@ -90,17 +111,28 @@ ParameterRole parameter_role(std::string_view parameter) {
 }
 
 void IsolationConfig::validate() const {
-  if (!(tolerance >= 0.0) || !std::isfinite(tolerance))
-    throw Error("fault isolation: tolerance must be non-negative and finite, got " + std::to_string(tolerance));
-  if (!(sigma_slack >= 0.0) || !std::isfinite(sigma_slack))
-    throw Error("fault isolation: sigma_slack must be non-negative and finite, got " +
-                std::to_string(sigma_slack));
+  for (const auto& [name, value] : {std::pair{"tolerance", tolerance}, {"sigma_floor", sigma_floor},
+                                    {"ambiguity", ambiguity}})
+    if (!(value >= 0.0) || !std::isfinite(value))
+      throw Error(std::string("fault isolation: ") + name + " must be non-negative and finite, got " +
+                  std::to_string(value));
+  if (!(sigma_slack > 0.0) || !std::isfinite(sigma_slack))
+    throw Error("fault isolation: sigma_slack must be positive and finite, got " + std::to_string(sigma_slack));
+  if (max_faults < 1) throw Error("fault isolation: max_faults must be at least 1");
+  for (const FaultHypothesis& h : hypotheses) {
+    if (!is_known_fault(h.fault)) throw Error("fault isolation: hypothesis of unknown fault '" + h.fault + "'");
+    for (const std::string_view p : {"R1", "R2", "kw1", "kw2", "kr1", "kr2", "ks"}) {
+      const auto it = h.signature.find(std::string(p));
+      if (it == h.signature.end() || !std::isfinite(it->second))
+        throw Error("fault isolation: hypothesis '" + h.subject + "' has no finite signature of " + std::string(p));
+    }
+  }
 }
 
-std::vector<Isolation> isolate(const std::vector<Deviation>& moved, const IsolationConfig& config) {
+std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const IsolationConfig& config) {
   config.validate();
   std::set<std::string_view> seen;
-  for (const Deviation& d : moved) {
+  for (const Deviation& d : deviations) {
     parameter_role(d.parameter);
     if (!seen.insert(d.parameter).second)
       throw Error("fault isolation: parameter " + d.parameter + " given twice");
@@ -108,34 +140,71 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& moved, const Isolat
       throw Error("fault isolation: deviation of " + d.parameter + " is not finite or has a negative sigma (" +
                   std::to_string(d.relative) + " +- " + std::to_string(d.relative_sigma) + ")");
   }
+  const bool any_moved = std::any_of(deviations.begin(), deviations.end(), [](const Deviation& d) { return d.moved; });
+  if (!any_moved) return {};
+  const std::vector<FaultHypothesis>& hyp = config.hypotheses.empty() ? default_fault_hypotheses() : config.hypotheses;
 
-  std::vector<Isolation> result(moved.size());
-  std::vector<bool> assigned(moved.size(), false);
-  for (;;) {  // the largest, then best-fitting, signature among the parameters not yet named
-    const Signature* best = nullptr;
-    double best_misfit = std::numeric_limits<double>::infinity();
-    for (const Signature& sig : signatures()) {
-      const double m = misfit(sig, moved, assigned, config);
-      if (m > 1.0) continue;
-      if (!best || sig.ratios.size() > best->ratios.size() ||
-          (sig.ratios.size() == best->ratios.size() && m < best_misfit)) {
-        best = &sig;
-        best_misfit = m;
+  // Fewest faults first: every set of k hypotheses, k = 1, 2, ... max_faults, until one set
+  // leaves no moved parameter unexplained.
+  Fit current = fit(deviations, hyp, {}, config);
+  for (std::size_t k = 1; k <= std::min(config.max_faults, hyp.size()); ++k) {
+    if (unexplained(current, deviations, config.sigma_slack) == 0) break;
+    std::vector<Fit> candidates;
+    std::vector<std::size_t> chosen(k);
+    for (std::size_t i = 0; i < k; ++i) chosen[i] = i;
+    for (;;) {  // the combinations of k of the hypotheses, in lexicographic order
+      Fit f = fit(deviations, hyp, chosen, config);
+      if (f.valid) candidates.push_back(std::move(f));
+      std::size_t i = k;
+      while (i > 0 && chosen[i - 1] == hyp.size() - k + i - 1) --i;
+      if (i == 0) break;
+      ++chosen[i - 1];
+      for (std::size_t j = i; j < k; ++j) chosen[j] = chosen[j - 1] + 1;
+    }
+    if (candidates.empty()) continue;
+    double best_rss = std::numeric_limits<double>::infinity();
+    for (const Fit& f : candidates) best_rss = std::min(best_rss, f.rss);
+    const Fit* best = nullptr;
+    int best_agreement = 0;
+    for (const Fit& f : candidates) {
+      if (f.rss > best_rss + config.ambiguity) continue;
+      const int agreement = own_agreement(f, deviations, hyp);
+      if (!best || agreement > best_agreement || (agreement == best_agreement && f.rss < best->rss)) {
+        best = &f;
+        best_agreement = agreement;
       }
     }
-    if (!best) break;
-    for (const auto& [parameter, ratio] : best->ratios) {
-      for (std::size_t i = 0; i < moved.size(); ++i) {
-        if (moved[i].parameter != parameter) continue;
-        result[i] = {moved[i].parameter, std::string(best->fault), std::nullopt, std::string(best->subject), true};
-        assigned[i] = true;
-      }
-    }
+    // A further fault only when it explains more of what moved.
+    if (unexplained(*best, deviations, config.sigma_slack) < unexplained(current, deviations, config.sigma_slack))
+      current = *best;
   }
-  for (std::size_t i = 0; i < moved.size(); ++i) {
-    if (assigned[i]) continue;
-    const ParameterRole role = parameter_role(moved[i].parameter);
-    result[i] = {moved[i].parameter, std::string(role.fault), role.channel, std::string(role.subject), false};
+
+  std::vector<Isolation> result;
+  for (std::size_t i = 0; i < deviations.size(); ++i) {
+    const Deviation& d = deviations[i];
+    if (!d.moved) continue;
+    const auto row = static_cast<Eigen::Index>(i);
+    // The hypothesis predicting most of this parameter's change, if more than one sigma of it.
+    std::optional<std::size_t> named;
+    double largest = 1.0;
+    if (std::abs(current.residual(row)) <= config.sigma_slack) {
+      for (Eigen::Index j = 0; j < current.predicted.cols(); ++j) {
+        const double share = std::abs(current.predicted(row, j)) / current.sigma(row);
+        if (share > largest) {
+          largest = share;
+          named = current.hypotheses[static_cast<std::size_t>(j)];
+        }
+      }
+    }
+    if (!named) {
+      const ParameterRole role = parameter_role(d.parameter);
+      result.push_back({d.parameter, std::string(role.fault), role.channel, std::string(role.subject), false});
+      continue;
+    }
+    const FaultHypothesis& h = hyp[*named];
+    // The hypothesis is this parameter's own fault under its own name: the alert needs no more.
+    const bool own = h.own.size() == 1 && h.own.front() == d.parameter && h.subject == parameter_role(d.parameter).subject;
+    result.push_back({d.parameter, h.fault, h.channel, h.subject, !own});
   }
   return result;
 }

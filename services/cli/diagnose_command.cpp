@@ -5,7 +5,9 @@
 // scatter is the whole sigma_eff; deadbeat reports sigmas but is biased off nominal). The first
 // window of each experiment skips kSettlingSamples (a record starts at the nominal operating
 // point and settles to the plant's own); later windows carry the controller state. A model
-// file is one window. The windows of the first N inputs form the baseline, learned by the
+// file is one window. Fault isolation uses the closed-loop signatures of the first
+// experiment's plant and controller (diagnostics/fault_signatures.hpp). The windows of the
+// first N inputs form the baseline, learned by the
 // diagnostics engine (its mean and the scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
 // of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the
 // trend store DIR/trends.sqlite.
@@ -18,6 +20,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,6 +31,7 @@
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
 #include "diagnostics/experiment_windows.hpp"
+#include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
 #include "identifier/identify_experiment.hpp"
@@ -55,6 +59,7 @@ struct Input {
   std::string file;
   std::string kind;  // "experiment" | "model"
   std::vector<diag::EstimateWindow> windows;
+  std::optional<Experiment> loop;  // an experiment's sidecar (no samples): plant and controller
 };
 
 bool is_model_file(const std::filesystem::path& path) {
@@ -75,7 +80,8 @@ Input model_input(const std::string& file, double start, const std::string& plan
   if (m.plant_model != "amb1dof_voltage")
     throw Error(file + ": plant_model is '" + m.plant_model + "'; diagnose knows the parameters of amb1dof_voltage only");
   try {
-    return {file, "model", {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)}};
+    return {file, "model", {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)},
+            std::nullopt};
   } catch (const Error& e) {
     throw Error(file + ": " + e.what());
   }
@@ -89,7 +95,11 @@ Input experiment_input(const std::string& file, double start, double window, con
   const Experiment e = read_experiment(file).experiment;
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
-  Input in{file, "experiment", {}};
+  Input in{file, "experiment", {}, e};
+  in.loop->t.resize(0);
+  in.loop->y.resize(0, 0);
+  in.loop->u.resize(0, 0);
+  in.loop->r.resize(0, 0);
   try {
     const std::vector<Experiment> parts = diag::split_experiment(e, samples);
     for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -220,7 +230,18 @@ void run(const DiagnoseArguments& a) {
                 " (a shorter --window or a larger --baseline)");
   const std::filesystem::path dir(a.out);
   std::filesystem::create_directories(dir);
-  const diag::EngineConfig config;
+  diag::EngineConfig config;
+  // Fault signatures of the loop the records came from (the first experiment's plant and
+  // controller); model files alone get those of the loop `ambid sim` runs.
+  for (const Input& in : inputs) {
+    if (!in.loop) continue;
+    try {
+      config.isolation.hypotheses = diag::closed_loop_fault_hypotheses(*in.loop);
+    } catch (const Error& e) {
+      throw Error(in.file + ": no fault signatures of its closed loop: " + e.what());
+    }
+    break;
+  }
   const diag::OfflineDiagnosis d = diag::diagnose_offline(windows, baseline_windows, dir / "trends.sqlite", config);
   report::write_file_atomically(dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n");
   const std::string summary = summary_text(a, inputs, baseline_windows, d);

@@ -1,18 +1,20 @@
 // The diagnostics engine on estimate windows identified from simulated experiments with
 // sensor noise (simulated_windows.hpp): the truth is the fault the simulation was given.
+// Steps of single faults are in simulated_step_test.cpp.
 #include <gtest/gtest.h>
 
 #include <optional>
-#include <ostream>
 #include <string>
 #include <vector>
 
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/simulated_windows.hpp"
-#include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
 namespace {
+
+using testing::describe_alerts;
+using testing::raised;
 
 constexpr std::size_t kLearning = 30;
 constexpr std::size_t kChangeAt = 40;
@@ -23,81 +25,6 @@ EngineConfig config() {
   return c;
 }
 
-struct Sequence {
-  std::vector<Alert> alerts;
-  std::vector<EstimateWindow> windows;
-};
-
-Sequence run(const testing::SimulatedBearing& bearing, std::size_t windows, const std::string& store_name) {
-  TrendStore store(testing::fresh_store_path(store_name));
-  DiagnosticsEngine engine(store, config());
-  Sequence r;
-  for (std::size_t n = 0; n < windows; ++n) {
-    r.windows.push_back(bearing.estimate(n));
-    for (Alert& a : engine.process(r.windows.back())) r.alerts.push_back(std::move(a));
-  }
-  return r;
-}
-
-bool raised(const Alert& a) { return a.level == Level::warn || a.level == Level::error; }
-
-std::string describe(const std::vector<Alert>& alerts) {
-  std::string text;
-  for (const Alert& a : alerts) text += "\n  " + to_json(a).dump();
-  return text;
-}
-
-struct StepCase {
-  std::string parameter;
-  std::string fault;
-  int channel;
-};
-void PrintTo(const StepCase& c, std::ostream* os) { *os << c.parameter; }
-
-class SimulatedStep : public ::testing::TestWithParam<StepCase> {};
-
-// +20 % of one true parameter from window kChangeAt on: ERROR on that parameter with its
-// fault and channel within 3 windows, and no WARN or ERROR naming any other fault or channel.
-//
-// DISABLED: it fails with the identifier as it is (identifier/amb1dof_deadbeat on the
-// nonlinear loop; its operating-point bias is being fixed on branch wt-identify). Measured
-// here (1 nm / 1 uA noise, 1 V PRBS, 0.25 s windows after 0.25 s of settling), relative to the
-// learned baselines:
-//   R1 +20 % -> R1 +9.9 % (WARN, not ERROR), R2 -9.5 %, ks -6.5 %, kr1 = kr2 -3.1 % (air_gap)
-//   kw1 +20 % -> kw1 +20 % ERROR (right), but R1, R2 +19..20 %, kr1, kr2 +26 %, ks +34 %
-// so other faults are named. With closed-loop (now used here, no sigmas: the baseline scatter
-// is sigma_eff) it still fails on 0.25 s windows: R1 +20 % gives coil 1 but also force_factor
-// / air_gap alerts, and also on 1 s windows: R1 +20 % -> R1 +22 % ERROR (right) but ks -8.2 %,
-// kr1 = kr2 -3.5 % (air_gap WARN). Not yet known whether the linearised ks, kr of the faulty
-// operating point truly move (the coil currents shift) or the identification is biased;
-// re-enable once that is settled.
-TEST_P(SimulatedStep, DISABLED_ErrorNamesTheFaultWithinAFewWindows) {
-  const StepCase c = GetParam();
-  testing::SimulatedBearing bearing;
-  bearing.seed = 5000;
-  bearing.change = [&](std::size_t n) {
-    return n >= kChangeAt ? std::map<std::string, double>{{c.parameter, 0.2}} : std::map<std::string, double>{};
-  };
-  const Sequence r = run(bearing, kChangeAt + 8, "sim_step_" + c.parameter);
-  std::optional<double> error_time;
-  for (const Alert& a : r.alerts) {
-    if (!raised(a)) continue;
-    EXPECT_EQ(a.fault, c.fault) << describe(r.alerts);
-    EXPECT_EQ(a.channel, c.channel) << describe(r.alerts);
-    if (a.level == Level::error && a.parameter == c.parameter && !error_time) error_time = a.time;
-  }
-  ASSERT_TRUE(error_time) << describe(r.alerts);
-  const double first_changed = r.windows[kChangeAt].time;
-  EXPECT_LE(*error_time, first_changed + 2 * bearing.window + 1e-9) << describe(r.alerts);
-  EXPECT_GE(*error_time, first_changed) << describe(r.alerts);
-}
-
-INSTANTIATE_TEST_SUITE_P(Faults, SimulatedStep,
-                         ::testing::Values(StepCase{"R1", "coil_resistance", 1}, StepCase{"R2", "coil_resistance", 2},
-                                           StepCase{"kw1", "amplifier_gain", 1},
-                                           StepCase{"kw2", "amplifier_gain", 2}),
-                         [](const ::testing::TestParamInfo<StepCase>& p) { return p.param.parameter; });
-
 // R1 rising by 0.1 % of nominal per window from window kChangeAt on (+10 % 100 windows
 // later): a WARN (or ERROR) on coil 1 resistance while the true rise is still below 10 %.
 TEST(SimulatedDrift, SlowRiseOfR1WarnsBeforeTenPercent) {
@@ -105,15 +32,21 @@ TEST(SimulatedDrift, SlowRiseOfR1WarnsBeforeTenPercent) {
   bearing.seed = 6000;
   auto rise = [](std::size_t n) { return n < kChangeAt ? 0.0 : 0.001 * static_cast<double>(n - kChangeAt + 1); };
   bearing.change = [&](std::size_t n) { return std::map<std::string, double>{{"R1", rise(n)}}; };
-  const Sequence r = run(bearing, kChangeAt + 100, "sim_drift_R1");
+  const auto r = testing::run_simulated_sequence(bearing, kChangeAt + 100, "sim_drift_R1", config());
   std::optional<std::size_t> warned;
   for (std::size_t n = 0; n < r.windows.size() && !warned; ++n)
     for (const Alert& a : r.alerts)
       if (a.time == r.windows[n].time && raised(a) && a.parameter == "R1" && a.fault == "coil_resistance" &&
           a.channel == 1)
         warned = n;
-  ASSERT_TRUE(warned) << describe(r.alerts);
-  EXPECT_LT(rise(*warned), 0.10) << describe(r.alerts);
+  ASSERT_TRUE(warned) << describe_alerts(r.alerts);
+  EXPECT_LT(rise(*warned), 0.10) << describe_alerts(r.alerts);
+  // Whatever else the rise moves (the bias currents) is named after coil 1 too.
+  for (const Alert& a : r.alerts)
+    if (raised(a)) {
+      EXPECT_EQ(a.fault, "coil_resistance") << describe_alerts(r.alerts);
+      EXPECT_EQ(a.channel, 1) << describe_alerts(r.alerts);
+    }
   ::testing::Test::RecordProperty("true_rise_at_warning", std::to_string(rise(*warned)));
 }
 
@@ -122,8 +55,8 @@ TEST(SimulatedDrift, SlowRiseOfR1WarnsBeforeTenPercent) {
 TEST(SimulatedNominal, NoAlertIn150Windows) {
   testing::SimulatedBearing bearing;
   bearing.seed = 7000;
-  const Sequence r = run(bearing, 150, "sim_nominal_150");
-  for (const Alert& a : r.alerts) EXPECT_FALSE(raised(a)) << describe(r.alerts);
+  const auto r = testing::run_simulated_sequence(bearing, 150, "sim_nominal_150", config());
+  for (const Alert& a : r.alerts) EXPECT_FALSE(raised(a)) << describe_alerts(r.alerts);
 }
 
 }  // namespace

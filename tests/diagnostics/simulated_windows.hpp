@@ -10,7 +10,9 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
+#include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/estimate.hpp"
 
 namespace ambid::diag::testing {
@@ -30,5 +32,16 @@ struct SimulatedBearing {
 
   EstimateWindow estimate(std::size_t n) const;
 };
+
+// Windows 0 .. windows-1 of `bearing` through an engine with `config` on a fresh store.
+struct SimulatedSequence {
+  std::vector<Alert> alerts;
+  std::vector<EstimateWindow> windows;
+};
+SimulatedSequence run_simulated_sequence(const SimulatedBearing& bearing, std::size_t windows,
+                                         const std::string& store_name, const EngineConfig& config);
+
+bool raised(const Alert& a);                             // WARN or ERROR
+std::string describe_alerts(const std::vector<Alert>& alerts);  // one JSON line each
 
 }  // namespace ambid::diag::testing

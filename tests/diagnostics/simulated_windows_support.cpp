@@ -4,6 +4,7 @@
 
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/synthetic_estimates.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/scenario.hpp"
@@ -27,6 +28,26 @@ EstimateWindow SimulatedBearing::estimate(std::size_t n) const {
   options.validation_fraction = 0.0;
   const Model m = ident::identify_experiment(last, options);
   return estimate_window(m.physical, m.uncertainty, static_cast<double>(n + 1) * window, plant_id, Source::sim);
+}
+
+SimulatedSequence run_simulated_sequence(const SimulatedBearing& bearing, std::size_t windows,
+                                         const std::string& store_name, const EngineConfig& config) {
+  TrendStore store(fresh_store_path(store_name));
+  DiagnosticsEngine engine(store, config);
+  SimulatedSequence r;
+  for (std::size_t n = 0; n < windows; ++n) {
+    r.windows.push_back(bearing.estimate(n));
+    for (Alert& a : engine.process(r.windows.back())) r.alerts.push_back(std::move(a));
+  }
+  return r;
+}
+
+bool raised(const Alert& a) { return a.level == Level::warn || a.level == Level::error; }
+
+std::string describe_alerts(const std::vector<Alert>& alerts) {
+  std::string text;
+  for (const Alert& a : alerts) text += "\n  " + to_json(a).dump();
+  return text;
 }
 
 }  // namespace ambid::diag::testing

@@ -24,12 +24,13 @@ const std::string kNoise = " --duration 0.5 --amplitude 1 --position-noise 1e-9 
 
 void write_json(const fs::path& path, const nlohmann::json& j) { std::ofstream(path) << j.dump(2); }
 
-// Three nominal experiments and three with R1 = 21 ohm, 0.5 s each (two 0.25 s windows).
-std::vector<std::string> make_experiments(const fs::path& dir) {
+// Three nominal experiments and three with `fault` (R1 = 21 ohm by default), 0.5 s each (two
+// 0.25 s windows).
+std::vector<std::string> make_experiments(const fs::path& dir, const std::string& fault = "R1=21") {
   std::vector<std::string> files;
   for (int i = 1; i <= 6; ++i) {
     const std::string stem = (dir / ((i <= 3 ? "nominal" : "hot") + std::to_string(i))).string();
-    const auto r = run_ambid("sim" + kNoise + " --seed " + std::to_string(i) + (i > 3 ? " --set R1=21" : "") +
+    const auto r = run_ambid("sim" + kNoise + " --seed " + std::to_string(i) + (i > 3 ? " --set " + fault : "") +
                              " --out " + stem);
     EXPECT_EQ(r.status, 0) << r.output;
     files.push_back(stem + ".json");
@@ -44,8 +45,8 @@ std::string joined(const std::vector<std::string>& files) {
 }
 
 // Runs diagnose on make_experiments() in DIR/out and returns diagnosis.json.
-nlohmann::json diagnose_hot_coil(const fs::path& dir) {
-  const auto files = make_experiments(dir);
+nlohmann::json diagnose_hot_coil(const fs::path& dir, const std::string& fault = "R1=21") {
+  const auto files = make_experiments(dir, fault);
   const auto r = run_ambid("diagnose" + joined(files) + " --out " + (dir / "out").string());
   EXPECT_EQ(r.status, 0) << r.output;
   return read_json(dir / "out" / "diagnosis.json");
@@ -85,14 +86,31 @@ TEST(DiagnoseCli, HotCoilOneIsNamedCoilResistanceChannelOne) {
 
 // With the default closed-loop method (unbiased off nominal) R1 +20 % is an ERROR of coil 1
 // and nothing else is named (deadbeat read it as +9.9 %, a WARN, and named coil 2 / air gap).
+// An alert on ks or kr (the bias currents fall with the hot coil) names coil 1 as well.
 TEST(DiagnoseCli, HotCoilOneIsAnErrorAndNothingElse) {
   const nlohmann::json d = diagnose_hot_coil(fresh_dir("diagnose_hot_coil_error"));
   ASSERT_FALSE(d["alerts"].empty());
   EXPECT_EQ(d["levels"]["R1"], "ERROR");
   for (const auto& a : d["alerts"]) {
-    EXPECT_EQ(a["parameter"], "R1") << a.dump();
     EXPECT_EQ(a["fault"], "coil_resistance") << a.dump();
     EXPECT_EQ(a["channel"], 1) << a.dump();
+    if (a["level"] == "ERROR") {
+      EXPECT_EQ(a["parameter"], "R1") << a.dump();
+    }
+  }
+}
+
+// kw2 +20 % (amplifier 2): an ERROR of amplifier 2 gain, and every alert names amplifier 2.
+TEST(DiagnoseCli, StrongAmplifierTwoIsAnErrorAndNothingElse) {
+  const nlohmann::json d = diagnose_hot_coil(fresh_dir("diagnose_amplifier_two"), "kw2=1.2");
+  ASSERT_FALSE(d["alerts"].empty());
+  EXPECT_EQ(d["levels"]["kw2"], "ERROR");
+  for (const auto& a : d["alerts"]) {
+    EXPECT_EQ(a["fault"], "amplifier_gain") << a.dump();
+    EXPECT_EQ(a["channel"], 2) << a.dump();
+    if (a["level"] == "ERROR") {
+      EXPECT_EQ(a["parameter"], "kw2") << a.dump();
+    }
   }
 }
 
