@@ -19,6 +19,7 @@
 #include "core/experiment_io.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/bus/bus.hpp"
+#include "services/daemons/scenario_json.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -85,10 +86,7 @@ TEST(Rig, SamplesOfTheBoardReachTheBusBitForBit) {
   ASSERT_EQ(e.samples(), 5000);
   // The board runs the nominal scenario record after record, record k with seed 1 + k, and
   // the window lies inside one record: find it in an independent simulation, compare exactly.
-  sim::ScenarioOptions o;
-  o.excitation = "prbs";
-  o.amplitude = 0.05;
-  o.duration = 1.0;
+  sim::ScenarioOptions o = daemons::read_scenario_file(nominal);
   bool found = false;
   for (std::uint64_t k = 0; k < 400 && !found; ++k) {
     o.seed = 1 + k;
