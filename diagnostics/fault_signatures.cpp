@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "identifier/amb1dof_structure.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
@@ -60,22 +61,6 @@ class SensedPlant : public sim::Plant {
   double gain_;
   Eigen::VectorXd state_, input_;
 };
-
-// x, x', i1, i2 as the sensors see them: T = [c_x; c_x A; c_i1; c_i2].
-ContinuousSystem measured_coordinates(const ContinuousSystem& sys) {
-  Eigen::Matrix4d T;
-  T.row(0) = sys.C.row(0);
-  T.row(1) = sys.C.row(0) * sys.A;
-  T.row(2) = sys.C.row(1);
-  T.row(3) = sys.C.row(2);
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(T);
-  if (!lu.isInvertible()) throw Error("fault signatures: the outputs x, i1, i2 and x' do not determine the state");
-  ContinuousSystem out = sys;
-  out.A = T * sys.A * lu.inverse();
-  out.B = T * sys.B;
-  out.C = sys.C * lu.inverse();
-  return out;
-}
 
 sim::Amb1dofParameters nominal_of(const Experiment& header) {
   if (header.plant.model != "amb1dof_voltage")
@@ -132,7 +117,7 @@ std::map<std::string, double> settled_parameters(const Experiment& header,
   sim::LinearizeOptions lin;
   lin.state_scale = plant.plant().state_scale();
   lin.input_scale = plant.plant().input_scale();
-  const ContinuousSystem sys = measured_coordinates(sim::linearize(plant, lin));
+  const ContinuousSystem sys = ident::amb1dof_physical_coordinates(sim::linearize(plant, lin));
   const auto physical =
       sim::amb1dof_physical_from_structure(sim::amb1dof_structure_parameters(sys), nominal).to_map();
   std::map<std::string, double> out;

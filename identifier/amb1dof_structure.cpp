@@ -48,25 +48,50 @@ Amb1dofNominal amb1dof_nominal(const Experiment& e, const std::string& who) {
           parameter("m")};
 }
 
-Amb1dofPhysicalModel amb1dof_physical_model(const DiscreteSystem& r) {
-  r.validate();
-  if (r.states() != 4 || r.inputs() != 2 || r.outputs() != 3)
-    throw Error("amb1dof physical coordinates: need a realisation with 4 states, 2 inputs and 3 outputs, got " +
-                std::to_string(r.states()) + ", " + std::to_string(r.inputs()) + ", " + std::to_string(r.outputs()));
-  if (r.D.cwiseAbs().maxCoeff() != 0.0)
-    throw Error("amb1dof physical coordinates: the plant must be strictly proper (D = 0)");
-  const ContinuousSystem c = d2c_zoh(r);
+namespace {
+
+// T = [C_x; C_x Ac; C_i1; C_i2] maps a realisation's state to the physical one (x, x', i1, i2).
+Eigen::Matrix4d physical_transform(const ContinuousSystem& c) {
   Eigen::Matrix4d T;
   T.row(0) = c.C.row(0);
   T.row(1) = c.C.row(0) * c.A;
   T.row(2) = c.C.row(1);
   T.row(3) = c.C.row(2);
+  return T;
+}
+
+Eigen::Matrix4d checked_inverse(const Eigen::Matrix4d& T) {
   const Eigen::FullPivLU<Eigen::Matrix4d> lu(T);
   const double rcond = 1.0 / (T.norm() * lu.inverse().norm());
   if (!lu.isInvertible() || !(rcond > 1e-12))
     throw Error("amb1dof physical coordinates: [C_x; C_x Ac; C_i1; C_i2] is singular (reciprocal condition " +
                 std::to_string(rcond) + "): the outputs and the rate of x do not determine the state");
-  const Eigen::Matrix4d Ti = lu.inverse();
+  return lu.inverse();
+}
+
+void check_shape(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C) {
+  if (A.rows() != 4 || B.cols() != 2 || C.rows() != 3)
+    throw Error("amb1dof physical coordinates: need a realisation with 4 states, 2 inputs and 3 outputs, got " +
+                std::to_string(A.rows()) + ", " + std::to_string(B.cols()) + ", " + std::to_string(C.rows()));
+}
+
+}  // namespace
+
+ContinuousSystem amb1dof_physical_coordinates(const ContinuousSystem& c) {
+  check_shape(c.A, c.B, c.C);
+  const Eigen::Matrix4d T = physical_transform(c);
+  const Eigen::Matrix4d Ti = checked_inverse(T);
+  return {T * c.A * Ti, T * c.B, c.C * Ti, c.D};
+}
+
+Amb1dofPhysicalModel amb1dof_physical_model(const DiscreteSystem& r) {
+  r.validate();
+  check_shape(r.A, r.B, r.C);
+  if (r.D.cwiseAbs().maxCoeff() != 0.0)
+    throw Error("amb1dof physical coordinates: the plant must be strictly proper (D = 0)");
+  const ContinuousSystem c = d2c_zoh(r);
+  const Eigen::Matrix4d T = physical_transform(c);
+  const Eigen::Matrix4d Ti = checked_inverse(T);
   Amb1dofPhysicalModel out;
   out.discrete = {T * r.A * Ti, T * r.B, r.C * Ti, r.D, r.sample_time};
   out.continuous = {T * c.A * Ti, T * c.B, c.C * Ti, c.D};

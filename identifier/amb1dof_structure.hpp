@@ -47,5 +47,8 @@ struct Amb1dofPhysicalModel {
 // 4 states x 2 inputs x 3 outputs, has D != 0, or whose T is singular (the outputs and the
 // rate of x do not determine the state), and when d2c_zoh refuses A.
 Amb1dofPhysicalModel amb1dof_physical_model(const DiscreteSystem& realization);
+// The same transformation of a continuous-time system (e.g. a linearised plant) with outputs
+// [x, i1, i2]: its states become x, x', i1, i2. Throws Error when they are not determined.
+ContinuousSystem amb1dof_physical_coordinates(const ContinuousSystem& system);
 
 }  // namespace ambid::ident
