@@ -84,10 +84,14 @@ void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
   model.extra["structure_deviation"] = id.structure_deviation;
 }
 
-DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+using Breaks = std::vector<Index>;
+
+DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                        const Breaks& breaks = {}) {
   const LoopSignals s = signals_of(e);
   ArxOptions ao;
   ao.order = arx_order;
+  ao.breaks = breaks;
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
@@ -96,8 +100,10 @@ DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx
 
 // The options the ARX -> Markov -> ERA methods share.
 template <typename Options>
-Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                        const Breaks& breaks) {
   Options out;
+  out.breaks = breaks;
   out.arx_order = arx_order;
   out.markov_count = markov_count;
   out.sample_time = e.sample_time;
@@ -105,24 +111,27 @@ Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx
   return out;
 }
 
-DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                               const Breaks& breaks = {}) {
   require_excitation(e, "closed-loop");
   const LoopSignals s = signals_of(e);
-  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count);
+  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count, breaks);
   return identify_with_known_controller(s.r, s.y, controller_of(e, s, "closed-loop"), co).plant;
 }
 
-DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                              const Breaks& breaks = {}) {
   require_excitation(e, "projection");  // without r, uf = u and the plant input is not excited independently
   const LoopSignals s = signals_of(e);
-  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count);
+  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count, breaks);
   return identify_projection_filter(s.y, s.u, s.uf, po).plant;
 }
 
-DiscreteSystem fit_realization(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
-  return o.method == "okid"          ? fit_okid(e, o, arx_order, markov_count)
-         : o.method == "closed-loop" ? fit_closed_loop(e, o, arx_order, markov_count)
-                                     : fit_projection(e, o, arx_order, markov_count);
+DiscreteSystem fit_realization(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                               const Breaks& breaks = {}) {
+  return o.method == "okid"          ? fit_okid(e, o, arx_order, markov_count, breaks)
+         : o.method == "closed-loop" ? fit_closed_loop(e, o, arx_order, markov_count, breaks)
+                                     : fit_projection(e, o, arx_order, markov_count, breaks);
 }
 
 void add_warning(Model& model, const std::string& warning) {
@@ -197,10 +206,10 @@ void add_jackknife_uncertainty(const Experiment& e, const IdentifyOptions& o, In
   std::vector<std::map<std::string, double>> estimates;
   try {
     for (Index i = 0; i < o.jackknife_segments; ++i) {
+      const LeaveOneSegmentOut cut = experiment_without_segment(e, i, o.jackknife_segments);
+      const Breaks breaks = cut.joint > 0 ? Breaks{cut.joint} : Breaks{};
       Model part;
-      add_amb1dof_structure(e, fit_realization(experiment_without_segment(e, i, o.jackknife_segments), o, arx_order,
-                                               markov_count),
-                            part);
+      add_amb1dof_structure(e, fit_realization(cut.experiment, o, arx_order, markov_count, breaks), part);
       part.parameters.insert(part.physical.begin(), part.physical.end());
       estimates.push_back(part.parameters);
     }

@@ -8,7 +8,7 @@ namespace ambid::ident {
 
 using Index = Eigen::Index;
 
-Experiment experiment_without_segment(const Experiment& e, Index segment, Index segments) {
+LeaveOneSegmentOut experiment_without_segment(const Experiment& e, Index segment, Index segments) {
   if (segments < 2 || segment < 0 || segment >= segments)
     throw Error("jackknife: segment " + std::to_string(segment) + " of " + std::to_string(segments) +
                 " (need 0 <= segment < segments, segments >= 2)");
@@ -30,7 +30,7 @@ Experiment experiment_without_segment(const Experiment& e, Index segment, Index 
   out.u = without(e.u);
   out.r = without(e.r);
   out.t = e.t(0) + e.sample_time * Eigen::VectorXd::LinSpaced(kept, 0.0, double(kept - 1)).array();
-  return out;
+  return {out, begin > 0 && end < N ? begin : 0};
 }
 
 std::map<std::string, double> jackknife_sigma(const std::vector<std::map<std::string, double>>& estimates) {
