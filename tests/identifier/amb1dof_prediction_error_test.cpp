@@ -77,7 +77,7 @@ TEST(Amb1dofPredictionError, CoilResistanceChangeUnderRealisticNoise) { check_ex
 TEST(Amb1dofPredictionError, AmplifierGainChangeUnderRealisticNoise) { check_example("kw1", "v8", 0.0064); }
 
 TEST(Amb1dofPredictionError, LeastSquaresIsBiasedOnTheSameData) {
-  // The bias the output-error method removes: deadbeat (least squares) on the nominal record.
+  // The bias the prediction-error method removes: deadbeat (least squares) on the same record.
   const sim::ScenarioOptions scenario = noisy_scenario("", 1.0, 11);
   const auto truth = testing::true_structure(scenario);
   const Model m = identify(sim::simulate_scenario(scenario), "deadbeat");

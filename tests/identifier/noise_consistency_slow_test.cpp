@@ -4,7 +4,7 @@
 // consistent. Excitation: PRBS 2 V on both inputs (x about 0.6 um rms in the 350 um gap;
 // the nonlinearity alone gives 0.26 % worst error at this level, 20 s, noise free).
 // Prints a table of the worst v1..v9 error against record length and noise level, for
-// deadbeat / deadbeat-iv (2 V PRBS) and for the closed-loop output-error method pem (1 V PRBS,
+// deadbeat / deadbeat-iv (2 V PRBS) and for the prediction-error method pem (1 V PRBS,
 // noise up to realistic sensors: 1e-6 m, 1e-3 A), and checks that pem's sigma is calibrated.
 #include <gtest/gtest.h>
 
@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
@@ -82,21 +83,30 @@ TEST(NoiseConsistency, WorstErrorAgainstRecordLengthAndNoise) {
     }
 }
 
-TEST(NoiseConsistency, OutputErrorWorstErrorAgainstRecordLengthAndNoise) {
+TEST(NoiseConsistency, PredictionErrorWorstErrorAgainstRecordLengthAndNoise) {
   std::printf("pem, 1 V PRBS\n%8s %10s %10s %12s %6s %12s %10s\n", "length", "x noise", "i noise", "worst %", "of",
               "sigma %", "max z");
   for (const double scale : {1.0, 3.0, 10.0, 30.0, 100.0})
     for (const double duration : {1.0, 2.0, 5.0, 20.0}) {
       const Experiment e = noisy_run(duration, 1e-8 * scale, 1e-5 * scale, 7, 1.0);
-      const Errors pem = worst_error(e, "pem");
+      Errors pem;
+      try {
+        pem = worst_error(e, "pem");
+      } catch (const InsufficientData& error) {  // a refusal is allowed only beyond realistic noise
+        std::printf("%7.0fs %10.1e %10.1e refused: %s\n", duration, 1e-8 * scale, 1e-5 * scale, error.what());
+        EXPECT_GT(scale, 10.0) << error.what();
+        continue;
+      }
       std::printf("%7.0fs %10.1e %10.1e %12.3g %6s %12.3g %10.2f\n", duration, 1e-8 * scale, 1e-5 * scale,
                   100 * pem.worst, pem.worst_name.c_str(), 100 * pem.worst_sigma, pem.worst_z);
       EXPECT_LT(pem.worst, 4.5 * pem.worst_sigma + 0.002) << duration << " s, noise x" << scale;
-      if (scale <= 10.0) EXPECT_LT(pem.worst, 0.0064) << duration << " s, noise x" << scale;
+      if (scale <= 10.0) {
+        EXPECT_LT(pem.worst, 0.0064) << duration << " s, noise x" << scale;
+      }
     }
 }
 
-TEST(NoiseConsistency, OutputErrorSigmaIsCalibrated) {
+TEST(NoiseConsistency, PredictionErrorSigmaIsCalibrated) {
   // 20 seeded 1 s records at 1e-7 m / 1e-4 A: observed scatter of each v over the mean sigma.
   constexpr int kRuns = 20;
   std::vector<std::vector<double>> values(9), sigmas(9);
