@@ -43,6 +43,10 @@ void check_example(const Example& example, const std::string& method, double cha
   const double change = m.parameters.at(example.v) / nominal.at(example.v) - 1.0;
   ::testing::Test::RecordProperty(example.parameter + "_" + method + "_" + example.v + "_change", testing::sci(change));
   EXPECT_NEAR(change, 0.2, change_tolerance);
+  // Validated in closed loop on the last 25 %, with the operating-point shift fitted.
+  ::testing::Test::RecordProperty(example.parameter + "_" + method + "_nrmse_x", testing::sci(m.fit_nrmse.at("x")));
+  EXPECT_LT(m.fit_nrmse.at("x"), 0.01);
+  EXPECT_LT(m.fit_nrmse.at("i1"), 0.01);
   for (const auto& [name, value] : truth) {
     const double error = m.parameters.at(name) / value - 1.0;
     ::testing::Test::RecordProperty(example.parameter + "_" + method + "_" + name + "_error", testing::sci(error));
