@@ -328,6 +328,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   add_residual(record, p, problem);
   const ceres::Solver::Summary summary = solve(problem, options.max_iterations);
   fit.iterations += static_cast<int>(summary.iterations.size());
+  fit.converged = summary.termination_type == ceres::CONVERGENCE;
   fit.start_cost = summary.initial_cost;
   fit.final_cost = summary.final_cost;
 

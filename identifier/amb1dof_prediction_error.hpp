@@ -54,6 +54,7 @@ struct Amb1dofPredictionErrorFit {
   double condition_number = 0.0;             // column-equilibrated Jacobian at the solution
   int iterations = 0;                        // both passes
   int start_index = 0;                       // the start that went on
+  bool converged = false;                    // false: the second pass stopped at max_iterations
   double start_cost = 0.0, final_cost = 0.0; // of the second pass (weighted, 0.5 sum e^2)
 };
 

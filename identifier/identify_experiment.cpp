@@ -193,6 +193,9 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
     model.uncertainty[q] = sigma * scale(i);
   }
   model.extra["structure_deviation"] = 0.0;  // the structure of eq. (4) by construction
+  if (!fit.converged)
+    add_warning(model, "pem: the solver stopped at its iteration limit before converging (" +
+                           std::to_string(fit.iterations) + " iterations)");
   model.extra["pem"] = {{"start", start_names[std::size_t(fit.start_index)]},
                         {"iterations", fit.iterations},
                         {"condition_number", fit.condition_number},
