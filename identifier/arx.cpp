@@ -114,13 +114,19 @@ ArxModel fit_arx(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen
   LeastSquaresAccumulator acc(regs, t, regressor_names(p, m, q, direct, options.output_symbol, options.input_symbol));
   const Eigen::Index block = 512;
   Eigen::MatrixXd phi(block, regs), target(block, t);
+  std::vector<bool> across_break(std::size_t(n), false);  // the window k-q .. k holds a break
+  for (const Eigen::Index b : options.breaks)
+    for (Eigen::Index k = std::max<Eigen::Index>(b, 0); k < std::min(n, b + q); ++k) across_break[std::size_t(k)] = true;
   for (Eigen::Index k0 = q; k0 < n; k0 += block) {
-    const Eigen::Index rows = std::min(block, n - k0);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      fill_row(y, u, q, direct, k0 + r, phi.row(r));
-      target.row(r) = z.row(k0 + r);
+    const Eigen::Index end = std::min(n, k0 + block);
+    Eigen::Index rows = 0;
+    for (Eigen::Index k = k0; k < end; ++k) {
+      if (across_break[std::size_t(k)]) continue;
+      fill_row(y, u, q, direct, k, phi.row(rows));
+      target.row(rows) = z.row(k);
+      ++rows;
     }
-    acc.add(phi.topRows(rows), target.topRows(rows));
+    if (rows > 0) acc.add(phi.topRows(rows), target.topRows(rows));
   }
 
   ArxModel model;

@@ -25,6 +25,9 @@ struct ArxOptions {
   // Signal names used in error messages ("r" makes them read "r2[k-1]").
   std::string output_symbol = "y";
   std::string input_symbol = "u";
+  // Samples where a new piece of record starts (records joined end to end, e.g. a jackknife
+  // sub-record): equations whose window k-q .. k crosses one are left out.
+  std::vector<Eigen::Index> breaks;
 };
 
 struct ArxModel {

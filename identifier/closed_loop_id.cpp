@@ -91,6 +91,7 @@ ClosedLoopIdResult identify_with_known_controller(const Eigen::MatrixXd& r, cons
   arx_options.direct_term = false;
   arx_options.least_squares = options.least_squares;
   arx_options.input_symbol = "r";
+  arx_options.breaks = options.breaks;
   out.arx = fit_arx(y, r, arx_options);
   out.closed_loop = markov_from_arx(out.arx, options.markov_count);
   out.open_loop = open_loop_markov(out.closed_loop, cm);

@@ -48,6 +48,7 @@ struct KnownControllerIdOptions {
   double sample_time = 0.0;       // of the data (> 0)
   EraOptions era;                 // order 0: the suggested order
   LeastSquaresOptions least_squares;
+  std::vector<Eigen::Index> breaks;  // joints of records joined end to end (ArxOptions::breaks)
 };
 
 struct ClosedLoopIdResult {

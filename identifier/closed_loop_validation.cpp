@@ -36,7 +36,8 @@ Eigen::MatrixXd replay_controller(const KnownController& k, const Eigen::MatrixX
 }
 
 Eigen::MatrixXd simulate_closed_loop(const DiscreteSystem& plant, const KnownController& k, const Eigen::MatrixXd& r,
-                                     const Eigen::VectorXd& x0, const Eigen::VectorXd& xc0) {
+                                     const Eigen::VectorXd& x0, const Eigen::VectorXd& xc0,
+                                     const Eigen::VectorXd& constant) {
   plant.validate();
   const Index m = plant.inputs(), p = plant.outputs();
   if (plant.D.cwiseAbs().maxCoeff() != 0.0)
@@ -48,12 +49,13 @@ Eigen::MatrixXd simulate_closed_loop(const DiscreteSystem& plant, const KnownCon
                 " outputs");
   Eigen::VectorXd x = state_or_zero(x0, plant.states(), "the plant's initial state");
   Eigen::VectorXd xc = state_or_zero(xc0, k.A.rows(), "the controller's initial state");
+  const Eigen::VectorXd g = state_or_zero(constant, plant.states(), "the constant term");
   Eigen::MatrixXd y(r.rows(), p);
   for (Index t = 0; t < r.rows(); ++t) {
     const Eigen::VectorXd yt = plant.C * x;
     const Eigen::VectorXd ut = k.C * xc + k.D.rightCols(p) * yt + r.row(t).transpose();
     y.row(t) = yt.transpose();
-    x = plant.A * x + plant.B * ut;
+    x = plant.A * x + plant.B * ut + g;
     xc = k.A * xc + k.B.leftCols(m) * ut + k.B.rightCols(p) * yt;
   }
   return y;
@@ -73,14 +75,17 @@ Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownContro
       throw InsufficientData("closed-loop validation: output " + std::to_string(j + 1) +
                              " does not vary over the validation segment (nrmse undefined)");
   }
-  // The response is affine in x0: y_model = y_forced + sum_i x0_i y_free_i. Each output is
-  // weighted by its spread so that the fit balances channels of different units.
+  // The response is affine in x0 and the constant term g: y_model = y_forced + sum_i x0_i y_x0_i
+  // + sum_i g_i y_g_i.
+  // Each output is weighted by its spread so that the fit balances channels of different units.
   const Eigen::MatrixXd forced = simulate_closed_loop(plant, k, r, {}, xc0);
   const Eigen::MatrixXd zero_r = Eigen::MatrixXd::Zero(N, r.cols());
   const Eigen::VectorXd zero_xc = Eigen::VectorXd::Zero(k.A.rows());
-  Eigen::MatrixXd free(N * p, n);
-  for (Index i = 0; i < n; ++i) {
-    const Eigen::MatrixXd yi = simulate_closed_loop(plant, k, zero_r, Eigen::VectorXd::Unit(n, i), zero_xc);
+  Eigen::MatrixXd free(N * p, 2 * n);
+  for (Index i = 0; i < 2 * n; ++i) {
+    const Eigen::VectorXd unit = Eigen::VectorXd::Unit(n, i % n), zero = Eigen::VectorXd::Zero(n);
+    const Eigen::MatrixXd yi = i < n ? simulate_closed_loop(plant, k, zero_r, unit, zero_xc)
+                                     : simulate_closed_loop(plant, k, zero_r, zero, zero_xc, unit);
     for (Index j = 0; j < p; ++j) free.block(j * N, i, N, 1) = yi.col(j) / spread(j);
   }
   Eigen::VectorXd residual(N * p);

@@ -5,12 +5,14 @@
 
 #include "core/error.hpp"
 #include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/amb1dof_prediction_error.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/closed_loop_id.hpp"
 #include "identifier/closed_loop_validation.hpp"
 #include "identifier/loop_signals.hpp"
 #include "identifier/markov.hpp"
 #include "identifier/projection_filter.hpp"
+#include "identifier/segment_jackknife.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -56,13 +58,17 @@ void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realizatio
   model.extra["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
 }
 
-void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
+void require_amb1dof(const Experiment& e, const IdentifyOptions& o) {
   if (!is_amb1dof(e))
     throw Error(kWho + ": method '" + o.method + "' is defined for plant model 'amb1dof_voltage' only, got '" +
                 e.plant.model + "'");
   if (o.order != 0 && o.order != 4)
     throw Error(kWho + ": method '" + o.method + "' gives the 4 physical states of amb1dof_voltage; --order " +
                 std::to_string(o.order) + " is not possible");
+}
+
+void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  require_amb1dof(e, o);
   DeadbeatOptions dopt;
   if (o.method == "deadbeat-iv") {
     require_excitation(e, o.method);
@@ -78,10 +84,14 @@ void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
   model.extra["structure_deviation"] = id.structure_deviation;
 }
 
-DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+using Breaks = std::vector<Index>;
+
+DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                        const Breaks& breaks = {}) {
   const LoopSignals s = signals_of(e);
   ArxOptions ao;
   ao.order = arx_order;
+  ao.breaks = breaks;
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
@@ -90,8 +100,10 @@ DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx
 
 // The options the ARX -> Markov -> ERA methods share.
 template <typename Options>
-Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                        const Breaks& breaks) {
   Options out;
+  out.breaks = breaks;
   out.arx_order = arx_order;
   out.markov_count = markov_count;
   out.sample_time = e.sample_time;
@@ -99,23 +111,117 @@ Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx
   return out;
 }
 
-DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                               const Breaks& breaks = {}) {
   require_excitation(e, "closed-loop");
   const LoopSignals s = signals_of(e);
-  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count);
+  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count, breaks);
   return identify_with_known_controller(s.r, s.y, controller_of(e, s, "closed-loop"), co).plant;
 }
 
-DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count) {
+DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                              const Breaks& breaks = {}) {
   require_excitation(e, "projection");  // without r, uf = u and the plant input is not excited independently
   const LoopSignals s = signals_of(e);
-  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count);
+  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count, breaks);
   return identify_projection_filter(s.y, s.u, s.uf, po).plant;
+}
+
+DiscreteSystem fit_realization(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                               const Breaks& breaks = {}) {
+  return o.method == "okid"          ? fit_okid(e, o, arx_order, markov_count, breaks)
+         : o.method == "closed-loop" ? fit_closed_loop(e, o, arx_order, markov_count, breaks)
+                                     : fit_projection(e, o, arx_order, markov_count, breaks);
 }
 
 void add_warning(Model& model, const std::string& warning) {
   if (!model.extra.contains("warnings")) model.extra["warnings"] = nlohmann::json::array();
   model.extra["warnings"].push_back(warning);
+}
+
+Eigen::Matrix<double, 9, 1> structure_vector(const std::map<std::string, double>& parameters) {
+  Eigen::Matrix<double, 9, 1> v;
+  for (Index i = 0; i < 9; ++i) v(i) = parameters.at(amb1dof_structure_names()[std::size_t(i)]);
+  return v;
+}
+
+// Starts from `closed-loop`, `deadbeat-iv` and `deadbeat` (those that succeed), then the
+// prediction-error refinement from the best of them.
+void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count, Model& model) {
+  require_amb1dof(e, o);
+  require_excitation(e, o.method);
+  const LoopSignals s = signals_of(e);
+  controller_of(e, s, o.method);  // the starts need it; refuse early, naming this method
+  std::vector<std::string> start_names, failures;
+  std::vector<Eigen::Matrix<double, 9, 1>> starts;
+  auto try_start = [&](const std::string& name, auto&& estimate) {
+    try {
+      starts.push_back(structure_vector(estimate()));
+      start_names.push_back(name);
+    } catch (const Error& error) {
+      failures.push_back(name + ": " + error.what());
+    }
+  };
+  try_start("closed-loop", [&] {
+    Model start;
+    add_amb1dof_structure(e, fit_closed_loop(e, o, arx_order, markov_count), start);
+    return start.parameters;
+  });
+  try_start("deadbeat-iv", [&] {
+    DeadbeatOptions dopt;
+    dopt.instrument_lags = o.instrument_lags > 0 ? o.instrument_lags : kDefaultInstrumentLags;
+    return identify_amb1dof_deadbeat(e, dopt).parameters;
+  });
+  try_start("deadbeat", [&] { return identify_amb1dof_deadbeat(e, DeadbeatOptions{}).parameters; });
+  if (starts.empty()) {
+    std::string all;
+    for (const auto& f : failures) all += (all.empty() ? "" : "; ") + f;
+    throw InsufficientData(kWho + ": method 'pem' found no starting estimate (" + all + ")");
+  }
+  const Amb1dofPredictionErrorFit fit = fit_amb1dof_prediction_error(s.y, s.u, s.r, e.sample_time, starts);
+  model.discrete = fit.discrete;
+  model.continuous = fit.continuous;
+  const Amb1dofNominal nominal = amb1dof_nominal(e, kWho);
+  const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(nominal.L1, nominal.L2, nominal.m);
+  for (Index i = 0; i < 9; ++i) {
+    const std::string& v = amb1dof_structure_names()[std::size_t(i)];
+    const std::string& q = amb1dof_physical_names()[std::size_t(i)];
+    const double sigma = std::sqrt(fit.covariance(i, i));
+    model.parameters[v] = fit.v(i);
+    model.physical[q] = fit.v(i) * scale(i);
+    model.uncertainty[v] = sigma;
+    model.uncertainty[q] = sigma * scale(i);
+  }
+  model.extra["structure_deviation"] = 0.0;  // the structure of eq. (4) by construction
+  if (!fit.converged)
+    add_warning(model, "pem: the solver stopped at its iteration limit before converging (" +
+                           std::to_string(fit.iterations) + " iterations)");
+  model.extra["pem"] = {{"start", start_names[std::size_t(fit.start_index)]},
+                        {"iterations", fit.iterations},
+                        {"condition_number", fit.condition_number},
+                        {"offset", {fit.offset(0), fit.offset(1), fit.offset(2)}},
+                        {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
+}
+
+// Segment jackknife of the parameters and physical quantities of an ARX/ERA method.
+void add_jackknife_uncertainty(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
+                               Model& model) {
+  std::vector<std::map<std::string, double>> estimates;
+  try {
+    for (Index i = 0; i < o.jackknife_segments; ++i) {
+      const LeaveOneSegmentOut cut = experiment_without_segment(e, i, o.jackknife_segments);
+      const Breaks breaks = cut.joint > 0 ? Breaks{cut.joint} : Breaks{};
+      Model part;
+      add_amb1dof_structure(e, fit_realization(cut.experiment, o, arx_order, markov_count, breaks), part);
+      part.parameters.insert(part.physical.begin(), part.physical.end());
+      estimates.push_back(part.parameters);
+    }
+  } catch (const Error& error) {
+    add_warning(model, std::string("no uncertainty: a leave-one-segment-out fit failed: ") + error.what());
+    return;
+  }
+  model.uncertainty = jackknife_sigma(estimates);
+  model.extra["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
 }
 
 void validate_on(const Experiment& validation, Model& model) {
@@ -136,7 +242,8 @@ void validate_on(const Experiment& validation, Model& model) {
 }  // namespace
 
 const std::vector<std::string>& identification_methods() {
-  static const std::vector<std::string> methods = {"deadbeat", "deadbeat-iv", "okid", "closed-loop", "projection"};
+  static const std::vector<std::string> methods = {"deadbeat", "deadbeat-iv", "okid", "closed-loop", "projection",
+                                                   "pem"};
   return methods;
 }
 
@@ -163,11 +270,14 @@ Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
 Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   const auto& methods = identification_methods();
   if (std::find(methods.begin(), methods.end(), o.method) == methods.end())
-    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, deadbeat-iv, okid, closed-loop or projection)");
+    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, deadbeat-iv, okid, closed-loop, projection or pem)");
   if (!(o.validation_fraction >= 0.0 && o.validation_fraction <= 0.9))
     throw Error(kWho + ": validation fraction must be in [0, 0.9], got " + std::to_string(o.validation_fraction));
   if (o.skip_samples < 0 || o.arx_order < 0 || o.markov_count < 0 || o.instrument_lags < 0)
     throw Error(kWho + ": skip_samples, arx_order, markov_count and instrument_lags must be >= 0");
+  if (o.jackknife_segments < 0 || o.jackknife_segments == 1)
+    throw Error(kWho + ": jackknife segments must be 0 (no uncertainty) or >= 2, got " +
+                std::to_string(o.jackknife_segments));
   e.validate();
   const Index usable = e.samples() - o.skip_samples;
   const Index validation = static_cast<Index>(std::floor(o.validation_fraction * double(usable)));
@@ -184,15 +294,17 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   model.sample_time = e.sample_time;
   if (o.method == "deadbeat" || o.method == "deadbeat-iv") {
     fit_deadbeat(fit, o, model);
+  } else if (o.method == "pem") {
+    fit_pem(fit, o, arx_order, markov_count, model);
   } else {
-    const DiscreteSystem realization = o.method == "okid"          ? fit_okid(fit, o, arx_order, markov_count)
-                                       : o.method == "closed-loop" ? fit_closed_loop(fit, o, arx_order, markov_count)
-                                                                   : fit_projection(fit, o, arx_order, markov_count);
+    const DiscreteSystem realization = fit_realization(fit, o, arx_order, markov_count);
     model.discrete = realization;
-    if (is_amb1dof(e) && realization.states() == 4)
+    if (is_amb1dof(e) && realization.states() == 4) {
       add_amb1dof_structure(e, realization, model);
-    else
+      if (o.jackknife_segments > 0) add_jackknife_uncertainty(fit, o, arx_order, markov_count, model);
+    } else {
       add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
+    }
   }
   model.discrete.sample_time = e.sample_time;
   model.extra["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};

@@ -9,9 +9,15 @@
 //   okid         ARX of y on the plant input u, OKID Markov parameters, ERA (no controller needed)
 //   closed-loop  known-controller identification from r to y (Lee ch. 2; needs controller and r)
 //   projection   projection filters with unknown feedback (Lee ch. 4; needs the feedback uf = u - r)
+//   pem          prediction-error refinement (innovations form, direct method) of v1..v9 by
+//                Ceres (amb1dof_prediction_error.hpp), started from the best of closed-loop,
+//                deadbeat-iv and deadbeat: consistent under sensor noise (amb1dof_voltage only;
+//                needs controller and r for the starts)
 // For `amb1dof_voltage` every 4-state result is brought to physical coordinates (x, x', i1, i2)
-// and gives v1..v9 and the physical quantities (amb1dof_structure.hpp); `deadbeat` also gives
-// their one-sigma uncertainty.
+// and gives v1..v9 and the physical quantities (amb1dof_structure.hpp), each with its one-sigma
+// uncertainty: deadbeat/deadbeat-iv from the least-squares covariance, pem from the QR of the
+// prediction-error Jacobian (sandwich with the score covariance), okid/closed-loop/projection by the segment
+// jackknife (segment_jackknife.hpp; `jackknife_segments` leave-one-out fits).
 //
 // The record is split: the first (1 - validation_fraction) is fitted, the rest only validates
 // (fit.nrmse, closed-loop simulation with the recorded controller, closed_loop_validation.hpp).
@@ -34,6 +40,7 @@ struct IdentifyOptions {
   Eigen::Index skip_samples = 0;   // leading samples dropped (settling transient)
   Eigen::Index instrument_lags = 0;  // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
   double validation_fraction = 0.25;  // in [0, 0.9]; 0: no validation (fit.nrmse empty)
+  Eigen::Index jackknife_segments = 8;  // okid/closed-loop/projection: 0 (no uncertainty) or >= 2
 };
 
 inline constexpr Eigen::Index kDefaultArxOrder = 16;

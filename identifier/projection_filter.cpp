@@ -49,6 +49,7 @@ ProjectionFilterResult identify_projection_filter(const Eigen::MatrixXd& y, cons
   yo.order = options.arx_order;
   yo.direct_term = options.estimate_feedthrough;
   yo.least_squares = options.least_squares;
+  yo.breaks = options.breaks;
   out.output_arx = fit_arx(y, u, yo);
   ArxOptions fo = yo;
   fo.direct_term = false;

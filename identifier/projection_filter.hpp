@@ -32,6 +32,7 @@ struct ProjectionFilterOptions {
   double sample_time = 0.0;
   EraOptions era;
   LeastSquaresOptions least_squares;
+  std::vector<Eigen::Index> breaks;  // joints of records joined end to end (ArxOptions::breaks)
 };
 
 struct ProjectionFilterResult {

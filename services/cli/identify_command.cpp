@@ -36,12 +36,15 @@ void add_identify_command(CLI::App& app) {
   auto& o = args->options;
   CLI::App* cmd = app.add_subcommand("identify", "identify the plant of an experiment and write model.json");
   cmd->add_option("experiment", args->experiment, "experiment (.json sidecar, .csv or stem)")->required();
-  cmd->add_option("--method", o.method, "deadbeat | deadbeat-iv | okid | closed-loop | projection")->required();
+  cmd->add_option("--method", o.method, "deadbeat | deadbeat-iv | okid | closed-loop | projection | pem")->required();
   cmd->add_option("--order", o.order, "model states (0: the plant model's, else ERA's suggestion)")
       ->capture_default_str();
   cmd->add_option("--arx-order", o.arx_order, "ARX order of okid/closed-loop/projection (0: default)")
       ->capture_default_str();
   cmd->add_option("--instrument-lags", o.instrument_lags, "deadbeat-iv: instruments r[k..k-N] (0: default)")
+      ->capture_default_str();
+  cmd->add_option("--jackknife", o.jackknife_segments,
+                  "okid/closed-loop/projection: segments of the uncertainty jackknife (0: no uncertainty)")
       ->capture_default_str();
   cmd->add_option("--skip", o.skip_samples, "leading samples to drop (settling transient)")->capture_default_str();
   cmd->add_option("--validation", o.validation_fraction, "fraction at the end kept for validation")

@@ -44,6 +44,26 @@ Eigen::MatrixXd simulate_arx(const TrueArx& t, const Eigen::MatrixXd& u, const E
   return y;
 }
 
+TEST(Arx, BreaksLeaveOutTheEquationsAcrossAJoint) {
+  // Two noise-free records of the same system joined end to end: with the joint declared a
+  // break the coefficients are exact; without it the q equations across the joint spoil them.
+  std::mt19937_64 rng(22);
+  const TrueArx t = true_arx();
+  const Eigen::MatrixXd u1 = random_matrix(300, 2, rng), u2 = random_matrix(200, 2, rng);
+  Eigen::MatrixXd u(500, 2), y(500, 2);
+  u << u1, u2;
+  y << simulate_arx(t, u1, Eigen::MatrixXd::Zero(300, 2)), simulate_arx(t, u2, Eigen::MatrixXd::Zero(200, 2));
+  ArxOptions o;
+  o.order = 2;
+  o.direct_term = true;
+  EXPECT_GT((fit_arx(y, u, o).a[0] - t.a1).norm(), 1e-3);
+  o.breaks = {300};
+  const ArxModel m = fit_arx(y, u, o);
+  EXPECT_LT((m.a[0] - t.a1).norm(), 1e-12);
+  EXPECT_LT((m.b[2] - t.b2).norm(), 1e-12);
+  EXPECT_EQ(m.fit.rows, 500 - 2 - 2);  // k = 2..499 without k = 300, 301
+}
+
 TEST(Arx, NoiseFreeMimoCoefficientsAreExact) {
   std::mt19937_64 rng(21);
   const TrueArx t = true_arx();

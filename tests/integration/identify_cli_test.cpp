@@ -76,10 +76,10 @@ TEST(IdentifyCli, DeadbeatModelFileHasTheTrueParameters) {
   EXPECT_NEAR(poles(*m.continuous).real().maxCoeff() / unstable, 1.0, 1e-3);
 }
 
-TEST(IdentifyCli, EraMethodsGiveThePhysicalParameters) {
+TEST(IdentifyCli, EraAndPredictionErrorMethodsGiveThePhysicalParametersWithSigmas) {
   const fs::path dir = fresh_dir("identify_era");
   const fs::path stem = simulate(dir);
-  for (const std::string method : {"okid", "closed-loop", "projection"}) {
+  for (const std::string method : {"okid", "closed-loop", "projection", "pem"}) {
     SCOPED_TRACE(method);
     const fs::path out = dir / (method + ".json");
     const CommandResult r = run_ambid("identify " + stem.string() + " --method " + method + " --out " + out.string());
@@ -87,6 +87,12 @@ TEST(IdentifyCli, EraMethodsGiveThePhysicalParameters) {
     const Model m = read_model(out);
     check_parameters(m, 2e-3);
     EXPECT_LT(m.fit_nrmse.at("x"), 0.01);
+    // model.json has a one-sigma uncertainty for every parameter and physical quantity.
+    for (const auto* group : {&m.parameters, &m.physical})
+      for (const auto& [name, value] : *group) {
+        ASSERT_TRUE(m.uncertainty.count(name)) << name;
+        EXPECT_GT(m.uncertainty.at(name), 0.0) << name;
+      }
   }
 }
 

@@ -1,0 +1,74 @@
+#pragma once
+// Prediction-error refinement (direct method, innovations form) of the seed 000 structure
+// parameters v1..v9 of `amb1dof_voltage` (amb1dof_structure.hpp) from closed-loop data.
+//
+// Model: the structure of eq. (4) sampled with a zero-order hold, with constant terms w of the
+// x'', i1', i2' rows (the shift of the operating point, e.g. a hot coil settles at other bias
+// currents) and a free predictor gain K (4 x 3):
+//   x^[t+1] = Ad(v) x^[t] + Bd(v) u[t] + g(v, w) + K (y[t] - C x^[t]),   x^[0] = x0 (fitted)
+// The residual is the one-step prediction error  e[t] = y[t] - C x^[t]  of every output,
+// weighted by 1 / its rms. Ceres (Levenberg-Marquardt, automatic derivatives through the
+// matrix exponential and the whole predictor) minimises it, from the given starting estimate
+// whose predictor has the lowest cost (the next one if the solver fails). K starts from the Kalman
+// gain of the starting model (Riccati iteration, no process noise): a stable predictor even
+// though the plant is unstable.
+//
+// Consistency in closed loop (the direct prediction-error method): the innovations form with
+// a free K contains the true noise model (white sensor noise, and process noise through the
+// plant's own states), so the prediction errors of the true model are white and independent
+// of the past u and y, however strongly the controller feeds the noise back; least squares on
+// the equation error is biased exactly by that feedback. u is the recorded plant input (it
+// needs no noise model of its own: the controller's output is known exactly).
+// Nothing here stabilises the identified plant: only the predictor A - K C is stable.
+//
+// Uncertainty (one sigma): the sandwich  H^-1 S H^-1,  H^-1 = (J'J)^-1 from the QR factor of
+// the column-equilibrated Jacobian (which also decides rank and conditioning) and S the
+// covariance of the score J'e from sums over blocks of consecutive samples (batch means).
+// Assumption: the prediction errors are stationary and correlated over much less than a
+// block; for white prediction errors S = sigma^2 J'J and this is the usual (J'J)^-1 sigma^2.
+// It does not include a model-structure error (e.g. the nonlinearity at large excitation).
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "core/state_space.hpp"
+
+namespace ambid::ident {
+
+struct Amb1dofPredictionErrorOptions {
+  int max_iterations = 60;        // Levenberg-Marquardt iterations per pass
+  double max_condition = 1e8;     // of the column-equilibrated Jacobian; beyond it: InsufficientData
+  Eigen::Index score_block = 200; // samples per block of the score covariance
+  Eigen::Index min_blocks = 10;   // fewer blocks in the record: InsufficientData
+};
+
+struct Amb1dofPredictionErrorFit {
+  Eigen::Matrix<double, 9, 1> v;             // v1..v9
+  Eigen::Matrix<double, 9, 9> covariance;    // of v
+  Eigen::Vector3d offset;                    // w: constant terms of the x'', i1', i2' rows
+  Eigen::Vector4d initial_state;             // x0 = [x, x', i1, i2] at the first sample
+  Eigen::Matrix<double, 4, 3> predictor_gain;  // K
+  ContinuousSystem continuous;               // Ac(v), Bc(v), C = [x, i1, i2], D = 0
+  DiscreteSystem discrete;                   // its zero-order hold at the sample time
+  Eigen::Vector3d residual_rms;              // prediction error per output [x, i1, i2], SI units
+  double condition_number = 0.0;             // column-equilibrated Jacobian at the solution
+  int iterations = 0;                        // both passes
+  int start_index = 0;                       // the start that went on
+  bool converged = false;                    // false: the second pass stopped at max_iterations
+  double start_cost = 0.0, final_cost = 0.0; // of the second pass (weighted, 0.5 sum e^2)
+};
+
+// y: samples x 3 ([x, i1, i2] deviations), u: samples x 2 ([u1, u2] deviations, the recorded
+// plant input), r: samples x 2 (the excitation; only checked to be non-zero: without it the
+// data would be fitted to noise through the free offsets and initial state), v_starts the
+// starting v1..v9 (e.g. least-squares estimates; every entry non-zero). Throws Error for
+// inconsistent sizes or no start, InsufficientData when the record is too short for the score
+// covariance, when r is zero, when an output does not vary, when the solver fails from every
+// start (or every start's predictor diverges) or when the Jacobian is rank deficient or ill-conditioned (the data do not
+// determine v).
+Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u,
+                                                       const Eigen::MatrixXd& r, double sample_time,
+                                                       const std::vector<Eigen::Matrix<double, 9, 1>>& v_starts,
+                                                       const Amb1dofPredictionErrorOptions& options = {});
+
+}  // namespace ambid::ident
