@@ -45,6 +45,9 @@ ident::IdentifyOptions window_identify_options(const std::string& method, Eigen:
   o.method = method;
   o.skip_samples = skip_samples;
   o.validation_fraction = 0.0;  // every sample of a window goes into its estimate
+  // No jackknife: diagnostics learns each parameter's window-to-window scatter (baseline.hpp),
+  // and 8 leave-one-out fits per window would cost the stack its real-time headroom.
+  o.jackknife_segments = 0;
   return o;
 }
 

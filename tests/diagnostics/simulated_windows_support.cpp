@@ -26,6 +26,7 @@ EstimateWindow SimulatedBearing::estimate(std::size_t n) const {
   ident::IdentifyOptions options;
   options.method = "closed-loop";  // the window starts after `settle`, controller state carried: no skip
   options.validation_fraction = 0.0;
+  options.jackknife_segments = 0;  // as `ambid diagnose` and the identifier daemon: scatter-based sigmas
   const Model m = ident::identify_experiment(last, options);
   return estimate_window(m.physical, m.uncertainty, static_cast<double>(n + 1) * window, plant_id, Source::sim);
 }
