@@ -25,8 +25,13 @@ std::vector<bus::Estimate> estimates(const std::map<std::string, double>& values
                                      const std::map<std::string, double>& sigmas) {
   std::vector<bus::Estimate> out;
   for (const auto& [name, value] : values) {
+    if (sigmas.empty()) {  // a method without sigmas: diagnostics uses the baseline's scatter
+      out.push_back({name, value, 0.0});
+      continue;
+    }
     const auto sigma = sigmas.find(name);
-    out.push_back({name, value, sigma == sigmas.end() ? 0.0 : sigma->second});
+    if (sigma == sigmas.end()) throw Error("identifier: the method reported no uncertainty of " + name);
+    out.push_back({name, value, sigma->second});
   }
   return out;
 }

@@ -164,6 +164,10 @@ class RigSource : public PlantSource {
     if (!decoded.frame)
       return reject(std::string(rig::fault_name(decoded.fault)), decoded.reason + " (from " + d.from.text() + ")");
     if (!(d.from == rig_)) return reject("sender", "a frame from " + d.from.text() + ", not the rig " + rig_.text());
+    const rig::Payload& p = decoded.frame->payload;
+    if (!std::holds_alternative<rig::RigStatus>(p) && !std::holds_alternative<rig::SampleBatch>(p) &&
+        !std::holds_alternative<rig::ExciteReply>(p))
+      return reject("direction", "a gateway frame from the rig");  // it neither counts nor keeps the rig alive
     if (!in_sequence(decoded.frame->seq)) return;
     frames_->Increment();
     last_frame_ = Clock::now();
@@ -172,14 +176,10 @@ class RigSource : public PlantSource {
       break_ = true;
       condition_ = SourceCondition{true, "rig " + rig_.text() + " streaming again"};
     }
-    const rig::Payload& p = decoded.frame->payload;
     if (const auto* s = std::get_if<rig::RigStatus>(&p)) return take_status(*s);
     if (const auto* b = std::get_if<rig::SampleBatch>(&p)) return take_batch(*b);
-    if (const auto* r = std::get_if<rig::ExciteReply>(&p)) {
-      replies_[r->command] = *r;
-      return;
-    }
-    reject("direction", "a gateway frame from the rig");
+    const auto& r = std::get<rig::ExciteReply>(p);
+    replies_[r.command] = r;
   }
 
   // False for a late or repeated frame (dropped). A gap is counted and starts a new record.
@@ -208,6 +208,7 @@ class RigSource : public PlantSource {
     if (have_status_ && (s.model != status_.model || s.y_names != status_.y_names || s.u_names != status_.u_names ||
                          s.r_names != status_.r_names || s.sample_time != status_.sample_time)) {
       log("rig " + rig_.text() + " changed its model or channels: a new record starts");
+      flush();  // the pending rows belong to the old model and channels
       break_ = true;
     }
     if (have_status_ && s.state != status_.state)
@@ -225,14 +226,19 @@ class RigSource : public PlantSource {
         std::abs(b.sample_time - status_.sample_time) > 0.01 * status_.sample_time)
       return reject("mismatch", "a batch of model " + b.model + " with " + std::to_string(b.ny) + "/" +
                                     std::to_string(b.nu) + "/" + std::to_string(b.nr) +
-                                    " channels, the rig's status says " + status_.model);
-    if (break_ || b.record != record_ || b.first_index != next_index_) {
+                                    " channels and sample time " + std::to_string(b.sample_time) +
+                                    " s, the rig's status says " + status_.model + " with " +
+                                    std::to_string(status_.sample_time) + " s");
+    // Downstream the times are rebuilt from the first one: a clock jump must start a new record.
+    const bool clock_jumps = !(std::abs(b.t[0] - next_t_) <= 0.01 * status_.sample_time);
+    if (break_ || b.record != record_ || b.first_index != next_index_ || clock_jumps) {
       flush();
       pending_.starts_record = true;
     }
     break_ = false;
     record_ = b.record;
     next_index_ = b.first_index + b.count();
+    next_t_ = b.t.back() + status_.sample_time;
     for (std::size_t k = 0; k < b.count(); ++k) {
       pending_.t.push_back(b.t[k]);
       pending_.y.insert(pending_.y.end(), b.y.begin() + std::ptrdiff_t(k * b.ny),
@@ -277,6 +283,7 @@ class RigSource : public PlantSource {
   bool have_status_ = false, have_seq_ = false, silent_ = false, break_ = true;
   std::uint32_t seq_ = 0, next_seq_ = 0, command_ = 0, record_ = 0;
   std::uint64_t next_index_ = 0, rejected_ = 0;
+  double next_t_ = 0.0;  // the time the next sample of the record must have
   Clock::time_point last_sent_{}, last_frame_ = Clock::now();
   Pending pending_;
   std::deque<SourceRows> ready_;

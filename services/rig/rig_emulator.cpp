@@ -136,8 +136,10 @@ class Emulator {
     }
     const Payload& p = decoded.frame->payload;
     if (const auto* hello = std::get_if<Hello>(&p)) {
-      if (!gateway_ || !(*gateway_ == d.from))
+      if (!gateway_ || !(*gateway_ == d.from)) {
         log_("HELLO from " + d.from.text() + " (" + hello->gateway + "): streaming to it");
+        last_reply_.reset();  // a new gateway numbers its commands from 1 again: no resend to answer
+      }
       gateway_ = d.from;
       last_heard_ = Clock::now();
       if (!start_) start_ = last_heard_;  // the board's loop starts with the first subscription

@@ -217,6 +217,8 @@ Payload decode_payload(FrameType type, Reader& r) {
       s.state = RigState(state);
       s.board_time = r.f64("board time");
       s.sample_time = r.f64("sample time");
+      if (!(s.sample_time > 0))
+        throw Malformed{Fault::bad_value, "sample time " + std::to_string(s.sample_time) + " s is not > 0"};
       s.model = r.text(kMaxName, "model name");
       s.y_names = r.names("y names");
       s.u_names = r.names("u names");

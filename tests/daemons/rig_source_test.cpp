@@ -51,8 +51,10 @@ class ScriptedBoard {
     return s;
   }
 
-  // `count` samples of record `record` from `first`: t = first ms, y = (k, -k), u = 2k, r = 3k.
-  void batch(std::uint32_t record, std::uint64_t first, std::size_t count, std::uint8_t ny = 2) {
+  // `count` samples of record `record` from `first`: t = first ms + t_offset, y = (k, -k, 10k...),
+  // u = 2k, r = 3k.
+  void batch(std::uint32_t record, std::uint64_t first, std::size_t count, std::uint8_t ny = 2,
+             double t_offset = 0.0) {
     rig::SampleBatch b;
     b.record = record;
     b.first_index = first;
@@ -63,9 +65,8 @@ class ScriptedBoard {
     b.nr = 1;
     for (std::size_t i = 0; i < count; ++i) {
       const double k = double(first + i);
-      b.t.push_back(k * 1e-3);
-      b.y.push_back(k);
-      if (ny > 1) b.y.push_back(-k);
+      b.t.push_back(k * 1e-3 + t_offset);
+      for (std::uint8_t j = 0; j < ny; ++j) b.y.push_back(j == 0 ? k : j == 1 ? -k : 10 * k);
       b.u.push_back(2 * k);
       b.r.push_back(3 * k);
     }
@@ -92,6 +93,44 @@ std::vector<SourceRows> take(PlantSource& source, std::size_t n) {
   for (int k = 0; k < 100 && rows.size() < n; ++k)
     if (auto r = source.next_rows(20ms)) rows.push_back(std::move(*r));
   return rows;
+}
+
+// The samples waiting when the board announces other channels leave with the old ones; the
+// new channels start a new record.
+TEST(RigSource, ChangedChannelsFlushThePendingSamplesFirst) {
+  ScriptedBoard board;
+  auto source = board.connect(30);
+  board.batch(0, 0, 10);  // pending: fewer than batch_samples
+  rig::RigStatus wider = ScriptedBoard::status();
+  wider.y_names = {"y1", "y2", "y3"};
+  board.send(wider);
+  board.batch(0, 10, 22, 3);
+  board.batch(0, 32, 22, 3);
+  const auto rows = take(*source, 2);
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_EQ(rows[0].rows.samples(), 10);
+  EXPECT_EQ(rows[0].rows.y.cols(), 2);
+  EXPECT_EQ(rows[0].rows.y(9, 1), -9.0);
+  EXPECT_TRUE(rows[1].starts_record);
+  ASSERT_EQ(rows[1].rows.y.cols(), 3);
+  EXPECT_EQ(rows[1].rows.y_names, wider.y_names);
+  EXPECT_EQ(rows[1].rows.t(0), 10e-3);
+  EXPECT_EQ(rows[1].rows.y(0, 2), 100.0);
+}
+
+// Times downstream are rebuilt from a record's first sample: a board clock that jumps while
+// the sample index carries on starts a new record instead of being smoothed away.
+TEST(RigSource, ClockJumpStartsANewRecord) {
+  ScriptedBoard board;
+  auto source = board.connect(30);
+  board.batch(0, 0, 10);
+  board.batch(0, 10, 22, 2, 0.5);  // same index sequence, clock 0.5 s ahead
+  board.batch(0, 32, 22, 2, 0.5);
+  const auto rows = take(*source, 2);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].rows.samples(), 10);
+  EXPECT_TRUE(rows[1].starts_record);
+  EXPECT_DOUBLE_EQ(rows[1].rows.t(0), 0.51);
 }
 
 TEST(RigSource, BatchesAreCutAndEveryBreakStartsANewRecord) {
