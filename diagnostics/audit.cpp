@@ -122,28 +122,31 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
 
   // Fit the most promising candidates, score them on the validation segment.
   const int fitted = std::min<int>(options.fitted_candidates, int(candidates.size()));
+  // Each finding with its replay over the whole record (the accepted one's is the extended model's).
+  std::vector<std::pair<AuditFinding, ReplayedLoop>> scored;
   for (int c = 0; c < fitted; ++c) {
     if (!std::isfinite(candidates[std::size_t(c)].cost)) continue;
     const EffectFit fit = fit_effect(measured, r.measured, candidates[std::size_t(c)].start, r.estimation, options.fit);
     AuditFinding f;
     f.effect = fit.effect;
     f.nrmse_total_before = r.baseline_total;
-    Eigen::MatrixXd y;
+    ReplayedLoop loop;
     try {
-      y = replay_outputs(measured, {fit.effect}, N);
+      loop = replay_loop(measured, {fit.effect}, N);
     } catch (const InsufficientData&) {
       throw;
     } catch (const Error&) {
       continue;  // fitted on one part, it cannot even be simulated over the whole record
     }
-    f.nrmse_after = nrmse(r.measured, y, r.validation);
-    f.test = improvement_test(r.measured, r.nominal, y, r.validation, options.covariance_lags);
+    f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
+    f.test = improvement_test(r.measured, r.nominal, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
     f.score = f.nrmse_total_after * (1.0 + options.complexity_penalty * double(fit.effect.parameters.size()));
-    r.findings.push_back(std::move(f));
+    scored.emplace_back(std::move(f), std::move(loop));
   }
-  std::stable_sort(r.findings.begin(), r.findings.end(),
-                   [](const AuditFinding& a, const AuditFinding& b) { return a.score < b.score; });
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const auto& a, const auto& b) { return a.first.score < b.first.score; });
+  for (auto& [finding, loop] : scored) r.findings.push_back(finding);
   r.false_acceptance = options.false_acceptance;
   r.z_threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(r.findings.size())));
   for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
@@ -155,7 +158,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
       r.extended_effects = {best.effect};
     }
   }
-  const ReplayedLoop extended = r.extended_effects.empty() ? nominal : replay_loop(measured, r.extended_effects, N);
+  const ReplayedLoop& extended = r.extended_effects.empty() ? nominal : scored.front().second;
   r.extended = extended.y;
   const Eigen::Index L = std::min<Eigen::Index>(512, r.validation.size());
   r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);

@@ -257,7 +257,9 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
     throw Error(kWho + ": needs y = [x, i1, i2], u and r at [u1, u2] with equal samples, got y " +
                 std::to_string(N) + " x " + std::to_string(y.cols()) + ", u " + std::to_string(u.rows()) + " x " +
                 std::to_string(u.cols()) + ", r " + std::to_string(r.rows()) + " x " + std::to_string(r.cols()));
-  if (!(sample_time > 0.0)) throw Error(kWho + ": sample time must be > 0");
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time)) throw Error(kWho + ": sample time must be finite and > 0");
+  if (!y.allFinite() || !u.allFinite() || !r.allFinite())
+    throw Error(kWho + ": y, u and r must be finite (a NaN or infinite sample)");
   if (v_starts.empty()) throw Error(kWho + ": needs at least one starting v1..v9");
   for (const Vector9& v : v_starts)
     if (!v.allFinite() || (v.array() == 0.0).any())

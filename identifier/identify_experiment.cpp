@@ -156,7 +156,10 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
   std::vector<Eigen::Matrix<double, 9, 1>> starts;
   auto try_start = [&](const std::string& name, auto&& estimate) {
     try {
-      starts.push_back(structure_vector(estimate()));
+      const Eigen::Matrix<double, 9, 1> v = structure_vector(estimate());
+      // One unusable start must not sink the others (the fit refuses such starts).
+      if (!v.allFinite() || (v.array() == 0.0).any()) throw Error("v1..v9 not finite or with a zero entry");
+      starts.push_back(v);
       start_names.push_back(name);
     } catch (const Error& error) {
       failures.push_back(name + ": " + error.what());
@@ -186,7 +189,7 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
   for (Index i = 0; i < 9; ++i) {
     const std::string& v = amb1dof_structure_names()[std::size_t(i)];
     const std::string& q = amb1dof_physical_names()[std::size_t(i)];
-    const double sigma = std::sqrt(fit.covariance(i, i));
+    const double sigma = std::sqrt(std::max(0.0, fit.covariance(i, i)));
     model.parameters[v] = fit.v(i);
     model.physical[q] = fit.v(i) * scale(i);
     model.uncertainty[v] = sigma;

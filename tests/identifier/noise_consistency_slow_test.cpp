@@ -41,7 +41,7 @@ Errors worst_error(const Experiment& e, const std::string& method) {
     if (error > out.worst) out.worst_name = name;
     out.worst = std::max(out.worst, error);
     out.worst_sigma = std::max(out.worst_sigma, m.uncertainty.at(name) / value);
-    out.worst_z = std::max(out.worst_z, error * value / m.uncertainty.at(name));
+    out.worst_z = std::max(out.worst_z, error * std::abs(value) / m.uncertainty.at(name));
   }
   return out;
 }
