@@ -32,7 +32,7 @@ const ambid::Experiment& record(const std::string& effect) {
 void audit(benchmark::State& state, const std::string& effect) {
   const ambid::Experiment& e = record(effect);
   for (auto _ : state) {
-    const ambid::diagnostics::AuditResult r = ambid::diagnostics::run_audit(e);
+    const ambid::diag::AuditResult r = ambid::diag::run_audit(e);
     benchmark::DoNotOptimize(r.baseline_total);
     state.SetLabel("cause " + r.cause);
   }

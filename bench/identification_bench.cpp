@@ -8,9 +8,9 @@
 
 #include <map>
 
-#include "identifier/arx.hpp"
+#include "identifier/time_domain/arx.hpp"
 #include "identifier/identify_experiment.hpp"
-#include "identifier/loop_signals.hpp"
+#include "identifier/time_domain/loop_signals.hpp"
 #include "plant_sim/scenario.hpp"
 
 namespace {

@@ -31,12 +31,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/experiment.hpp"
-#include "diagnostics/audit_amplitude.hpp"
-#include "diagnostics/audit_fit.hpp"
-#include "diagnostics/audit_frf.hpp"
-#include "diagnostics/audit_replay.hpp"
-#include "diagnostics/audit_significance.hpp"
-#include "diagnostics/audit_spectrum.hpp"
+#include "diagnostics/audit/audit_amplitude.hpp"
+#include "diagnostics/audit/audit_fit.hpp"
+#include "diagnostics/audit/audit_frf.hpp"
+#include "diagnostics/audit/audit_replay.hpp"
+#include "diagnostics/audit/audit_significance.hpp"
+#include "diagnostics/audit/audit_spectrum.hpp"
 #include "plant_sim/effects.hpp"
 
 namespace ambid::diagnostics {

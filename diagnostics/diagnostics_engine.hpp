@@ -19,9 +19,9 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/alert_policy.hpp"
+#include "diagnostics/monitor/alert_policy.hpp"
 #include "diagnostics/fault_isolation.hpp"
-#include "diagnostics/series_monitor.hpp"
+#include "diagnostics/monitor/series_monitor.hpp"
 #include "diagnostics/trend_store.hpp"
 
 namespace ambid::diag {

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "diagnostics/estimate.hpp"
-#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/families/amb1dof_deadbeat.hpp"
 
 namespace ambid::diag {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/baseline.hpp"
+#include "diagnostics/monitor/baseline.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/estimate.hpp"
 

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/baseline.hpp"
+#include "diagnostics/monitor/baseline.hpp"
 #include "diagnostics/estimate.hpp"
 
 namespace ambid::diag {

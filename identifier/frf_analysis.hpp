@@ -21,11 +21,11 @@
 #include <Eigen/Dense>
 
 #include "core/experiment.hpp"
-#include "identifier/frf_open_loop.hpp"
+#include "identifier/frequency_domain/frf_open_loop.hpp"
 #include "identifier/frf_types.hpp"
 #include "identifier/iso_14839.hpp"
-#include "identifier/rational_fit.hpp"
-#include "identifier/sensitivity_function.hpp"
+#include "identifier/frequency_domain/rational_fit.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
 

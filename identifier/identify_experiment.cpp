@@ -4,15 +4,15 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "identifier/amb1dof_deadbeat.hpp"
-#include "identifier/amb1dof_prediction_error.hpp"
+#include "identifier/families/amb1dof_deadbeat.hpp"
+#include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/amb1dof_structure.hpp"
-#include "identifier/closed_loop_id.hpp"
-#include "identifier/closed_loop_validation.hpp"
-#include "identifier/loop_signals.hpp"
-#include "identifier/markov.hpp"
-#include "identifier/projection_filter.hpp"
-#include "identifier/segment_jackknife.hpp"
+#include "identifier/time_domain/closed_loop_id.hpp"
+#include "identifier/time_domain/closed_loop_validation.hpp"
+#include "identifier/time_domain/loop_signals.hpp"
+#include "identifier/time_domain/markov.hpp"
+#include "identifier/time_domain/projection_filter.hpp"
+#include "identifier/time_domain/segment_jackknife.hpp"
 
 namespace ambid::ident {
 namespace {

@@ -17,7 +17,7 @@ namespace {
 struct AuditArguments {
   std::string experiment;
   std::string out;
-  diagnostics::AuditOptions options;
+  diag::AuditOptions options;
 };
 
 }  // namespace
@@ -41,13 +41,13 @@ void add_audit_command(CLI::App& app) {
   audit->callback([args] {
     const ReadResult read = read_experiment(args->experiment);
     for (const auto& w : read.warnings) std::cerr << "ambid audit: warning: " << w << "\n";
-    const diagnostics::AuditResult result = diagnostics::run_audit(read.experiment, args->options);
+    const diag::AuditResult result = diag::run_audit(read.experiment, args->options);
     const std::filesystem::path dir(args->out);
     const std::string experiment_file = std::filesystem::path(args->experiment).filename().string();
     report::write_file_atomically(dir / "audit.json",
-                                  diagnostics::audit_json(result, experiment_file, "model-extended.json").dump(2) + "\n");
+                                  diag::audit_json(result, experiment_file, "model-extended.json").dump(2) + "\n");
     report::write_file_atomically(dir / "model-extended.json",
-                                  diagnostics::extended_model_json(read.experiment, result).dump(2) + "\n");
+                                  diag::extended_model_json(read.experiment, result).dump(2) + "\n");
     report::write_file_atomically(dir / "report.html", audit_report_html(result, experiment_file));
     std::cout << "ambid audit: " << audit_verdict(result) << "\n";
     std::cout.precision(4);

@@ -19,7 +19,7 @@ std::string inline_svg(const report::Figure& figure) {
 std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
 
 // At most ~2000 points per trace: every k-th sample of the validation segment's first 0.2 s.
-report::Figure time_traces(const diagnostics::AuditResult& r) {
+report::Figure time_traces(const diag::AuditResult& r) {
   report::Figure fig;
   fig.title = "Validation segment: measured and replayed outputs (deviations)";
   fig.height = 250.0 * double(r.outputs.size());
@@ -42,7 +42,7 @@ report::Figure time_traces(const diagnostics::AuditResult& r) {
   return fig;
 }
 
-report::Figure residual_spectra(const diagnostics::AuditResult& r) {
+report::Figure residual_spectra(const diag::AuditResult& r) {
   report::Figure fig;
   fig.title = "Residual spectra (measured minus model), validation segment";
   fig.height = 250.0 * double(r.outputs.size());
@@ -102,7 +102,7 @@ report::Figure bode(const std::string& title, const std::string& label, const id
 }
 
 // measured / model for every plant pair: 0 dB and 0 deg where the model is right.
-report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<std::string>& inputs) {
+report::Figure ratio_plot(const diag::AuditResult& r, const std::vector<std::string>& inputs) {
   report::Figure fig;
   fig.title = "Measured / nominal model plant FRF per output/input pair (well-determined lines)";
   fig.share_x = true;
@@ -114,7 +114,7 @@ report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<s
   const ident::Frf& q = r.frfs.ratio_nominal;
   for (Eigen::Index i = 0; i < q.rows(); ++i)
     for (Eigen::Index j = 0; j < q.cols(); ++j) {
-      const std::vector<Eigen::Index> lines = diagnostics::determined_lines(r.frfs, i, j);
+      const std::vector<Eigen::Index> lines = diag::determined_lines(r.frfs, i, j);
       if (lines.size() < 2) continue;
       std::vector<double> f;
       Eigen::VectorXcd g(Eigen::Index(lines.size()));
@@ -131,7 +131,7 @@ report::Figure ratio_plot(const diagnostics::AuditResult& r, const std::vector<s
 }
 
 // Per part of the record: the level of the model error, log|G_meas / G_nominal|, per pair.
-std::string amplitude_table(const diagnostics::AuditResult& r) {
+std::string amplitude_table(const diag::AuditResult& r) {
   using report::xml_escape;
   const auto& a = r.amplitude;
   std::ostringstream h;
@@ -162,7 +162,7 @@ std::string amplitude_table(const diagnostics::AuditResult& r) {
 
 }  // namespace
 
-std::string audit_verdict(const diagnostics::AuditResult& r) {
+std::string audit_verdict(const diag::AuditResult& r) {
   std::ostringstream s;
   s.precision(3);
   if (r.cause == "none") {
@@ -192,7 +192,7 @@ std::string audit_verdict(const diagnostics::AuditResult& r) {
   return s.str();
 }
 
-std::string audit_report_html(const diagnostics::AuditResult& r, const std::string& experiment_name) {
+std::string audit_report_html(const diag::AuditResult& r, const std::string& experiment_name) {
   using report::xml_escape;
   std::ostringstream h;
   h.precision(4);

@@ -8,9 +8,9 @@
 namespace ambid::cli {
 
 // A standalone HTML document (inline SVG, no scripts, no external resources).
-std::string audit_report_html(const diagnostics::AuditResult& result, const std::string& experiment_name);
+std::string audit_report_html(const diag::AuditResult& result, const std::string& experiment_name);
 
 // The verdict in one or two plain sentences.
-std::string audit_verdict(const diagnostics::AuditResult& result);
+std::string audit_verdict(const diag::AuditResult& result);
 
 }  // namespace ambid::cli

@@ -11,8 +11,8 @@
 
 #include <gtest/gtest.h>
 
-#include "diagnostics/audit_amplitude.hpp"
-#include "diagnostics/audit_replay.hpp"
+#include "diagnostics/audit/audit_amplitude.hpp"
+#include "diagnostics/audit/audit_replay.hpp"
 #include "plant_sim/closed_loop.hpp"
 #include "plant_sim/scenario.hpp"
 

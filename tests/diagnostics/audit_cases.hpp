@@ -8,7 +8,7 @@
 #include "core/experiment.hpp"
 #include "plant_sim/effects.hpp"
 
-namespace ambid::diagnostics::testing {
+namespace ambid::diag::testing {
 
 // Draws the effect's switching parameters from its moderate band (random sign where both are
 // physical), its channel (1 or 2) and its shape parameters (frequencies, damping).
@@ -21,4 +21,4 @@ Experiment simulate_hidden(const sim::Effect& effect, double duration, std::uint
 // The size of an effect: its switching parameter, or the force amplitude of a harmonic.
 double effect_size(const sim::Effect& effect);
 
-}  // namespace ambid::diagnostics::testing
+}  // namespace ambid::diag::testing

@@ -6,7 +6,7 @@
 
 #include "plant_sim/scenario.hpp"
 
-namespace ambid::diagnostics::testing {
+namespace ambid::diag::testing {
 
 sim::Effect draw_effect(const std::string& name, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -57,4 +57,4 @@ double effect_size(const sim::Effect& effect) {
   return 0.0;
 }
 
-}  // namespace ambid::diagnostics::testing
+}  // namespace ambid::diag::testing

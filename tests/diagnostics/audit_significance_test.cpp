@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "diagnostics/audit_significance.hpp"
+#include "diagnostics/audit/audit_significance.hpp"
 
 namespace ambid::diagnostics {
 namespace {

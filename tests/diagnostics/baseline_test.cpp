@@ -1,4 +1,4 @@
-#include "diagnostics/baseline.hpp"
+#include "diagnostics/monitor/baseline.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "diagnostics/change_detection.hpp"
+#include "diagnostics/monitor/change_detection.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/families/amb1dof_deadbeat.hpp"
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {

@@ -1,7 +1,7 @@
 // Seed 000 deadbeat physical realisation of amb1dof_voltage against closed-loop data of its
 // linear model (seed 000 eq. 3/4 at the contract's nominal values), simulated here sample by
 // sample with the plant_sim observer/integral controller.
-#include "identifier/amb1dof_deadbeat.hpp"
+#include "identifier/families/amb1dof_deadbeat.hpp"
 
 #include <random>
 #include <sstream>

@@ -4,7 +4,7 @@
 // its sigmas; and the data it must refuse.
 //
 // Truth (amb1dof_truth.hpp): seed 000 eq. (4) of the true parameters where the loop settles.
-#include "identifier/amb1dof_prediction_error.hpp"
+#include "identifier/families/amb1dof_prediction_error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 
 #include "core/error.hpp"
 #include "identifier/identify_experiment.hpp"
-#include "identifier/loop_signals.hpp"
+#include "identifier/time_domain/loop_signals.hpp"
 #include "amb1dof_truth.hpp"
 #include "time_domain_fixtures.hpp"
 

@@ -1,4 +1,4 @@
-#include "identifier/arx.hpp"
+#include "identifier/time_domain/arx.hpp"
 
 #include <random>
 #include <string>

@@ -1,6 +1,6 @@
 // Known-controller closed-loop identification (Lee ch. 2) on closed loops simulated here,
 // sample by sample, around open-loop-unstable plants.
-#include "identifier/closed_loop_id.hpp"
+#include "identifier/time_domain/closed_loop_id.hpp"
 
 #include <random>
 

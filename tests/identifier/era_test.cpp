@@ -1,4 +1,4 @@
-#include "identifier/era.hpp"
+#include "identifier/time_domain/era.hpp"
 
 #include <random>
 

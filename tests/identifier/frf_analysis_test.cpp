@@ -10,10 +10,10 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
 #include "identifier/frf_analysis.hpp"
-#include "identifier/sensitivity_function.hpp"
-#include "identifier/frf_grey_box.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
+#include "identifier/frequency_domain/frf_grey_box.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/scenario.hpp"

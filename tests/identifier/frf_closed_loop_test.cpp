@@ -11,10 +11,10 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
-#include "identifier/frf_open_loop.hpp"
-#include "identifier/frf_periodic.hpp"
-#include "identifier/sensitivity_function.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/frequency_domain/frf_open_loop.hpp"
+#include "identifier/frequency_domain/frf_periodic.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
 namespace {

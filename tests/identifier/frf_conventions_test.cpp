@@ -9,12 +9,12 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
-#include "identifier/frf_dft.hpp"
-#include "identifier/frf_periodic.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/frequency_domain/frf_dft.hpp"
+#include "identifier/frequency_domain/frf_periodic.hpp"
 #include "identifier/frf_types.hpp"
 #include "identifier/frf_welch.hpp"
-#include "identifier/rational_fit.hpp"
+#include "identifier/frequency_domain/rational_fit.hpp"
 
 namespace ambid::ident {
 namespace {

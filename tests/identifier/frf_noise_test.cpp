@@ -7,8 +7,8 @@
 #include <complex>
 
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
-#include "identifier/frf_periodic.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/frequency_domain/frf_periodic.hpp"
 #include "identifier/frf_types.hpp"
 
 namespace ambid::ident {

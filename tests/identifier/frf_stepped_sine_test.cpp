@@ -9,9 +9,9 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
 #include "identifier/frf_analysis.hpp"
-#include "identifier/frf_stepped_sine.hpp"
+#include "identifier/frequency_domain/frf_stepped_sine.hpp"
 #include "plant_sim/excitation.hpp"
 
 namespace ambid::ident {

@@ -16,7 +16,7 @@
 
 #include "core/experiment.hpp"
 #include "core/state_space.hpp"
-#include "identifier/frf_loop.hpp"
+#include "identifier/frequency_domain/frf_loop.hpp"
 
 namespace ambid::ident::test {
 

@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/frf_uncertainty.hpp"
+#include "identifier/frequency_domain/frf_uncertainty.hpp"
 
 namespace ambid::ident {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
 #include "identifier/frf_types.hpp"
 #include "identifier/frf_welch.hpp"
 

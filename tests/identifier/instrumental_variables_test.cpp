@@ -3,7 +3,7 @@
 // times theta plus noise. Least squares is biased towards zero by the regressor noise
 // (attenuation factor var(s) / (var(s) + var(noise)) = 0.5 here); IV with r as instrument
 // is consistent.
-#include "identifier/instrumental_variables.hpp"
+#include "identifier/time_domain/instrumental_variables.hpp"
 
 #include <random>
 

@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
 #include "identifier/iso_14839.hpp"
-#include "identifier/sensitivity_function.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
 namespace {

@@ -1,4 +1,4 @@
-#include "identifier/kalman_gain.hpp"
+#include "identifier/time_domain/kalman_gain.hpp"
 
 #include <random>
 

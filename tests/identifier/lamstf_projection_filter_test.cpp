@@ -31,9 +31,9 @@
 
 #include <gtest/gtest.h>
 
-#include "identifier/markov.hpp"
-#include "identifier/physical_coordinates.hpp"
-#include "identifier/projection_filter.hpp"
+#include "identifier/time_domain/markov.hpp"
+#include "identifier/families/physical_coordinates.hpp"
+#include "identifier/time_domain/projection_filter.hpp"
 #include "plant_sim/lamstf.hpp"
 #include "plant_sim/lqr.hpp"
 #include "time_domain_fixtures.hpp"

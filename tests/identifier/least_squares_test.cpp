@@ -1,4 +1,4 @@
-#include "identifier/least_squares.hpp"
+#include "identifier/time_domain/least_squares.hpp"
 
 #include <random>
 #include <string>

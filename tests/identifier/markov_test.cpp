@@ -1,7 +1,7 @@
 // The Markov-parameter recursions against directly computed C A^k B products (seed 002 notes
 // sec. 8.3): ARX coefficients of a known innovation model with a fast predictor (rho = 0.25,
 // q = 200 so the truncation is below 1e-120) give the exact sequences.
-#include "identifier/markov.hpp"
+#include "identifier/time_domain/markov.hpp"
 
 #include <random>
 

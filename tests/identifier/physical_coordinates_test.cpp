@@ -1,4 +1,4 @@
-#include "identifier/physical_coordinates.hpp"
+#include "identifier/families/physical_coordinates.hpp"
 
 #include <random>
 

@@ -1,6 +1,6 @@
 // Unknown-feedback closed-loop identification by projection filters (Lee ch. 4) on closed
 // loops simulated here around open-loop-unstable plants.
-#include "identifier/projection_filter.hpp"
+#include "identifier/time_domain/projection_filter.hpp"
 
 #include <random>
 

@@ -9,10 +9,10 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
-#include "identifier/frf_periodic.hpp"
-#include "identifier/rational_fit.hpp"
-#include "identifier/rational_fit_order.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/frequency_domain/frf_periodic.hpp"
+#include "identifier/frequency_domain/rational_fit.hpp"
+#include "identifier/frequency_domain/rational_fit_order.hpp"
 
 namespace ambid::ident {
 namespace {

@@ -2,7 +2,7 @@
 // against the analytic standard error of a mean, and calibration of the sigmas it gives the
 // ERA-based methods: over seeded Monte-Carlo runs of the nonlinear amb1dof_voltage loop with
 // sensor noise, the observed scatter of every v must match the mean reported sigma.
-#include "identifier/segment_jackknife.hpp"
+#include "identifier/time_domain/segment_jackknife.hpp"
 
 #include <gtest/gtest.h>
 

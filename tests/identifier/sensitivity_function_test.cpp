@@ -6,9 +6,9 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/freq_response.hpp"
-#include "identifier/frf_loop.hpp"
-#include "identifier/sensitivity_function.hpp"
+#include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/frequency_domain/frf_loop.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
 namespace {

@@ -1,0 +1,215 @@
+#include "core/format/experiment_csv.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "core/error.hpp"
+#include "core/format/experiment_text.hpp"
+
+namespace ambid {
+namespace {
+
+bool is_blank(std::string_view text) { return text.find_first_not_of(" \t\r\n") == std::string_view::npos; }
+
+// Lines without their '\n' or "\r\n", numbered from 1.
+class Lines {
+ public:
+  explicit Lines(std::string_view text) : text_(text) {}
+  std::optional<std::string_view> next() {
+    if (pos_ >= text_.size()) return std::nullopt;
+    const std::size_t end = std::min(text_.find('\n', pos_), text_.size());
+    std::string_view line = text_.substr(pos_, end - pos_);
+    pos_ = end + 1;
+    ++number_;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    return line;
+  }
+  std::size_t number() const { return number_; }
+  bool rest_is_blank() const { return pos_ >= text_.size() || is_blank(text_.substr(pos_)); }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t number_ = 0;
+};
+
+// Cells of one line, with spaces and tabs around each cell removed.
+void split_cells(std::string_view line, std::vector<std::string_view>& cells) {
+  cells.clear();
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = std::min(line.find(',', start), line.size());
+    std::string_view cell = line.substr(start, comma - start);
+    while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
+    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t')) cell.remove_suffix(1);
+    cells.push_back(cell);
+    if (comma == line.size()) return;
+    start = comma + 1;
+  }
+}
+
+std::string at(std::size_t line) { return "line " + std::to_string(line); }
+
+double parse_cell(std::string_view cell, std::size_t line, const std::string& column) {
+  const std::string where = at(line) + ", column '" + column + "': ";
+  if (cell.empty()) throw Error(where + "empty cell; expected a finite number");
+  const std::optional<double> value = parse_number(cell);
+  if (!value)
+    throw Error(where + "expected a finite number ('.' decimal point, no thousands separators), got " +
+                quote_excerpt(cell));
+  if (!std::isfinite(*value)) throw Error(where + "expected a finite number, got " + quote_excerpt(cell));
+  return *value;
+}
+
+// Column index of every signal, in signal_names() order; warns about columns nobody named.
+std::vector<std::size_t> locate_columns(const std::vector<std::string_view>& header, const Experiment& e,
+                                        std::vector<std::string>& warnings) {
+  if (header.front() != "t")
+    throw Error(at(1) + ": the first column must be 't' (time in seconds), got " + quote_excerpt(header.front()));
+  std::map<std::string_view, std::size_t> index;
+  for (std::size_t c = 0; c < header.size(); ++c) {
+    if (header[c].empty()) throw Error(at(1) + ": column " + std::to_string(c + 1) + " has an empty name");
+    const auto [it, fresh] = index.emplace(header[c], c);
+    if (!fresh)
+      throw Error(at(1) + ": column '" + std::string(header[c]) + "' appears twice (columns " +
+                  std::to_string(it->second + 1) + " and " + std::to_string(c + 1) + ")");
+  }
+  std::vector<std::size_t> columns;
+  const std::pair<const std::vector<std::string>*, const char*> groups[] = {
+      {&e.y_names, "signals.y"}, {&e.u_names, "signals.u"}, {&e.r_names, "signals.r"}};
+  for (const auto& [names, key] : groups)
+    for (const auto& name : *names) {
+      const auto it = index.find(name);
+      if (it == index.end())
+        throw Error(at(1) + ": column '" + name + "' named in " + key + " is missing from the header");
+      columns.push_back(it->second);
+      index.erase(it);
+    }
+  index.erase("t");
+  if (!index.empty()) {
+    std::vector<std::pair<std::size_t, std::string_view>> ignored;  // in file order
+    for (const auto& [name, c] : index) ignored.emplace_back(c, name);
+    std::sort(ignored.begin(), ignored.end());
+    std::string list;
+    for (const auto& [c, name] : ignored) list += (list.empty() ? "'" : ", '") + std::string(name) + "'";
+    warnings.push_back("columns " + list + " are not named in the sidecar; ignored");
+  }
+  return columns;
+}
+
+// Linear interpolation of `values` (rows sampled at strictly increasing `t`) onto the grid
+// t(0) + k T that spans the data.
+void resample_uniform(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, std::size_t last_line) {
+  const Eigen::Index n = t.size();
+  // The tolerance keeps the last sample when the span is a whole number of steps.
+  const double steps = std::floor((t(n - 1) - t(0)) / T + 1e-9);
+  // Interpolation invents the samples between rows; ten per row is no longer jitter but a
+  // wrong sample_time or a broken clock (and a bad timestamp would exhaust memory).
+  if (steps + 1 > 10.0 * static_cast<double>(n))
+    throw Error("resampling " + std::to_string(n) + " rows spanning t = " + number_text(t(0)) + " to " +
+                number_text(t(n - 1)) + " (" + at(last_line) + ") every sample_time " + number_text(T) +
+                " s would invent more than 10 samples per row; check sample_time and the t column");
+  const auto m = static_cast<Eigen::Index>(steps) + 1;
+  Eigen::VectorXd grid(m);
+  Eigen::MatrixXd out(m, values.cols());
+  Eigen::Index j = 0;
+  for (Eigen::Index k = 0; k < m; ++k) {
+    grid(k) = t(0) + static_cast<double>(k) * T;
+    while (j + 2 < n && t(j + 1) < grid(k)) ++j;
+    const double w = std::clamp((grid(k) - t(j)) / (t(j + 1) - t(j)), 0.0, 1.0);
+    out.row(k) = (1.0 - w) * values.row(j) + w * values.row(j + 1);
+  }
+  t = std::move(grid);
+  values = std::move(out);
+}
+
+}  // namespace
+
+void parse_samples_csv(std::string_view text, const ReadOptions& options, Experiment& e,
+                       std::vector<std::string>& warnings) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
+  Lines lines(text);
+  const auto header_line = lines.next();
+  if (!header_line || is_blank(*header_line))
+    throw Error(at(1) + ": expected a header line of column names starting with 't', got an empty line");
+  std::vector<std::string_view> header;
+  split_cells(*header_line, header);
+  const std::vector<std::size_t> columns = locate_columns(header, e, warnings);
+  const std::vector<std::string> names = e.signal_names();
+
+  // Row-major samples: t then the signals in signal_names() order.
+  const std::size_t stride = columns.size() + 1;
+  std::vector<double> data;
+  std::vector<std::size_t> line_of_row;
+  std::vector<std::string_view> cells;
+  while (const auto line = lines.next()) {
+    if (is_blank(*line)) {
+      if (lines.rest_is_blank()) break;  // blank lines at the end of the file are harmless
+      throw Error(at(lines.number()) + " is empty; expected " + std::to_string(header.size()) + " cells");
+    }
+    split_cells(*line, cells);
+    if (cells.size() != header.size())
+      throw Error(at(lines.number()) + " has " + std::to_string(cells.size()) + " cells, the header has " +
+                  std::to_string(header.size()) + " (a ',' decimal point or thousands separator splits a number)");
+    const double t = parse_cell(cells[0], lines.number(), "t");
+    if (!line_of_row.empty() && !(t > data[data.size() - stride]))
+      throw Error(at(lines.number()) + ": t = " + quote_excerpt(cells[0]) + " is not greater than t = " +
+                  number_text(data[data.size() - stride]) + " on " + at(line_of_row.back()) +
+                  "; t must be strictly increasing");
+    data.push_back(t);
+    for (std::size_t s = 0; s < columns.size(); ++s)
+      data.push_back(parse_cell(cells[columns[s]], lines.number(), names[s]));
+    line_of_row.push_back(lines.number());
+  }
+  const auto rows = static_cast<Eigen::Index>(line_of_row.size());
+  if (rows < 2) throw Error("has " + std::to_string(rows) + " data rows; at least 2 are needed");
+
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
+      data.data(), rows, static_cast<Eigen::Index>(stride));
+  Eigen::VectorXd t = table.col(0);
+  Eigen::MatrixXd values = table.rightCols(static_cast<Eigen::Index>(columns.size()));
+  const double T = e.sample_time;
+  if (const auto gap = find_sampling_gap(t, T)) {
+    const std::size_t line = line_of_row[static_cast<std::size_t>(*gap)];
+    const std::string where = "t jumps by " + number_text(t(*gap) - t(*gap - 1)) + " s from " +
+                              number_text(t(*gap - 1)) + " (" + at(line_of_row[static_cast<std::size_t>(*gap - 1)]) +
+                              ") to " + number_text(t(*gap)) + " (" + at(line) + ")";
+    if (!options.resample)
+      throw Error(at(line) + ": sampling is not uniform: " + where + "; every step must be sample_time " +
+                  number_text(T) + " s within 1 % (reading with resampling interpolates onto a uniform grid)");
+    resample_uniform(t, values, T, line_of_row.back());
+    if (t.size() < 2)
+      throw Error("spans " + number_text(table(rows - 1, 0) - table(0, 0)) +
+                  " s, less than one sample_time " + number_text(T) + " s; resampling leaves 1 sample, at least 2 are needed");
+    warnings.push_back("sampling is not uniform (first at " + at(line) + ": " + where + "); resampled " +
+                       std::to_string(rows) + " rows onto " + std::to_string(t.size()) +
+                       " samples every " + number_text(T) + " s by linear interpolation");
+  }
+  const auto ny = static_cast<Eigen::Index>(e.y_names.size());
+  const auto nu = static_cast<Eigen::Index>(e.u_names.size());
+  const auto nr = static_cast<Eigen::Index>(e.r_names.size());
+  e.t = std::move(t);
+  e.y = values.leftCols(ny);
+  e.u = values.middleCols(ny, nu);
+  e.r = values.rightCols(nr);
+}
+
+std::string samples_csv(const Experiment& e) {
+  std::string out = "t";
+  for (const auto& name : e.signal_names()) out += "," + name;
+  out += '\n';
+  const Eigen::MatrixXd* groups[] = {&e.y, &e.u, &e.r};
+  for (Eigen::Index k = 0; k < e.samples(); ++k) {
+    out += number_text(e.t(k));
+    for (const Eigen::MatrixXd* values : groups)
+      for (Eigen::Index j = 0; j < values->cols(); ++j) {
+        out += ',';
+        out += number_text((*values)(k, j));
+      }
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace ambid

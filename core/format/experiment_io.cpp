@@ -1,0 +1,74 @@
+#include "core/experiment_io.hpp"
+
+#include <system_error>
+
+#include "core/error.hpp"
+#include "core/format/experiment_csv.hpp"
+#include "core/experiment_file.hpp"
+#include "core/format/experiment_sidecar.hpp"
+
+namespace ambid {
+namespace {
+
+struct ExperimentFiles {
+  std::filesystem::path csv, json;
+};
+
+// `path` names the .json, the .csv, or the stem; any other extension is part of the stem
+// (`run.v2` means `run.v2.csv` + `run.v2.json`).
+ExperimentFiles files_of(const std::filesystem::path& path) {
+  std::filesystem::path stem = path;
+  if (stem.extension() == ".json" || stem.extension() == ".csv") stem.replace_extension();
+  ExperimentFiles files{stem, stem};
+  files.csv += ".csv";
+  files.json += ".json";
+  return files;
+}
+
+// Runs `parse`, prefixing any Error and every new warning with the file name.
+template <typename Parse>
+void in_file(const std::filesystem::path& file, std::vector<std::string>& warnings, Parse parse) {
+  std::vector<std::string> local;
+  try {
+    parse(local);
+  } catch (const Error& e) {
+    throw Error(file.string() + ": " + e.what());
+  }
+  for (auto& w : local) warnings.push_back(file.string() + ": " + w);
+}
+
+}  // namespace
+
+ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions& options) {
+  const ExperimentFiles files = files_of(path);
+  ReadResult result;
+  const std::string sidecar_text = read_text_file(files.json);
+  in_file(files.json, result.warnings, [&](std::vector<std::string>& warnings) {
+    result.experiment = parse_sidecar(parse_sidecar_text(sidecar_text), warnings);
+  });
+  const std::string csv_text = read_text_file(files.csv);
+  in_file(files.csv, result.warnings, [&](std::vector<std::string>& warnings) {
+    parse_samples_csv(csv_text, options, result.experiment, warnings);
+  });
+  return result;
+}
+
+void write_experiment(const Experiment& experiment, const std::filesystem::path& stem) {
+  experiment.validate();
+  const ExperimentFiles files = files_of(stem);
+  std::string sidecar_text;
+  try {
+    sidecar_text = sidecar_json(experiment).dump(2) + "\n";
+  } catch (const nlohmann::json::exception& e) {  // a string that is not valid UTF-8
+    throw Error(std::string("cannot encode the sidecar of ") + files.json.string() + " as JSON: " + e.what());
+  }
+  const std::string csv_text = samples_csv(experiment);
+  if (const auto dir = files.json.parent_path(); !dir.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw Error("cannot create directory " + dir.string() + ": " + error.message());
+  }
+  write_files_atomically({{files.csv, csv_text}, {files.json, sidecar_text}});
+}
+
+}  // namespace ambid

@@ -1,0 +1,32 @@
+#pragma once
+// Fits the parameters of one candidate effect so that the replayed model (audit_replay.hpp)
+// matches the measured outputs on the estimation segment: nonlinear least squares (Ceres,
+// Levenberg-Marquardt with dense QR, central-difference Jacobians) in units of each
+// parameter's typical scale, within its physical range.
+#include "diagnostics/audit/audit_replay.hpp"
+#include "plant_sim/effects.hpp"
+
+namespace ambid::diagnostics {
+
+struct FitOptions {
+  int max_iterations = 12;
+};
+
+struct EffectFit {
+  sim::Effect effect;      // fitted parameters
+  double cost = 0.0;       // sum over outputs of NRMSE^2 on the estimation segment
+  int iterations = 0;
+  bool converged = false;  // Ceres reported convergence (not the iteration limit)
+};
+
+// Sum over outputs of NRMSE^2 of the replay with `effects` on `estimation`; +inf when the
+// model leaves its valid region (the candidate is then simply a bad one).
+double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measured_y,
+                       const std::vector<sim::Effect>& effects, const Segment& estimation);
+
+// Starts from `start` (an effect of the catalogue with initial values). `measured_y` is
+// measured.y_deviation(). Error when the start itself cannot be simulated.
+EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
+                     const Segment& estimation, const FitOptions& options = {});
+
+}  // namespace ambid::diagnostics

@@ -1,0 +1,59 @@
+#include "diagnostics/audit/audit_replay.hpp"
+
+#include "core/error.hpp"
+#include "plant_sim/amb1dof_extended.hpp"
+#include "plant_sim/closed_loop.hpp"
+
+namespace ambid::diagnostics {
+
+void require_auditable(const Experiment& measured) {
+  if (measured.plant.model != "amb1dof_voltage")
+    throw Error("audit: plant model '" + measured.plant.model + "' has no effect catalogue (known: amb1dof_voltage)");
+  if (!measured.controller) throw Error("audit: the experiment has no controller, so the loop cannot be replayed");
+  if (!measured.has_excitation())
+    throw InsufficientData("audit: the experiment records no excitation r, so the loop cannot be replayed");
+  if (measured.samples() < 100)
+    throw InsufficientData("audit: " + std::to_string(measured.samples()) + " samples are too few (need at least 100)");
+}
+
+ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effect>& effects, Eigen::Index samples) {
+  require_auditable(measured);
+  if (samples < 1 || samples > measured.samples())
+    throw Error("audit: cannot replay " + std::to_string(samples) + " of " + std::to_string(measured.samples()) +
+                " samples");
+  const sim::Amb1dofExtended model(sim::Amb1dofParameters::from_map(measured.plant.parameters), effects,
+                                   measured.sample_time);
+  sim::ClosedLoopOptions options;
+  options.samples = samples;
+  options.excitation = measured.r_deviation().topRows(samples);
+  Experiment header = measured;
+  header.t.resize(0);
+  header.y.resize(0, 0);
+  header.u.resize(0, 0);
+  header.r.resize(0, 0);
+  const Experiment replayed = sim::run_closed_loop(model, header, options);
+  return {replayed.y_deviation(), replayed.u_deviation()};
+}
+
+Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                               Eigen::Index samples) {
+  return replay_loop(measured, effects, samples).y;
+}
+
+Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment) {
+  if (segment.begin < 0 || segment.size() < 2 || measured.rows() < segment.end || model.rows() < segment.end ||
+      measured.cols() != model.cols())
+    throw Error("audit: NRMSE segment [" + std::to_string(segment.begin) + ", " + std::to_string(segment.end) +
+                ") does not fit the signals");
+  const Eigen::MatrixXd m = measured.middleRows(segment.begin, segment.size());
+  const Eigen::MatrixXd e = m - model.middleRows(segment.begin, segment.size());
+  Eigen::VectorXd out(m.cols());
+  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+    const double spread = (m.col(j).array() - m.col(j).mean()).matrix().norm();
+    if (!(spread > 0.0)) throw InsufficientData("audit: measured output " + std::to_string(j + 1) + " is constant");
+    out[j] = e.col(j).norm() / spread;
+  }
+  return out;
+}
+
+}  // namespace ambid::diagnostics

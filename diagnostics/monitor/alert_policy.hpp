@@ -1,0 +1,41 @@
+#pragma once
+// When a monitored parameter is OK, WARN, ERROR or STALE, and the words of its alert.
+//   WARN   a drift, or a step smaller than error_fraction of the baseline
+//   ERROR  a step or drift of at least error_fraction, or a step alarm that persisted
+//          persist_windows windows
+//   STALE  no estimate of the parameter for longer than stale_timeout seconds
+// Within one episode (from leaving OK until back to OK) the level never falls from ERROR to
+// WARN, so an alert does not flap while a changed value hovers near error_fraction.
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+#include "diagnostics/alert.hpp"
+#include "diagnostics/fault_isolation.hpp"
+#include "diagnostics/monitor/series_monitor.hpp"
+
+namespace ambid::diag {
+
+struct AlertPolicy {
+  double error_fraction = 0.10;
+  std::size_t persist_windows = 100;
+  double stale_timeout = 30.0;  // seconds
+  // Throws Error unless error_fraction > 0, persist_windows >= 1, stale_timeout > 0, finite.
+  void validate() const;
+
+  // Level of a series that is not stale; `episode` is the highest level since it was last OK.
+  Level level(const SeriesStatus& status, Level episode) const;
+};
+
+// "coil 1 resistance 20 % above baseline (step)"; for a fault shared by several parameters
+// "position sensor gain (kr1, kr2 alike): kr1 5.0 % above baseline (step)".
+std::string change_message(const Isolation& isolation, const SeriesStatus& status,
+                           const AlertPolicy& policy, std::size_t slope_window);
+// "coil 1 resistance within baseline", "... back within baseline", "... (estimates resumed)",
+// "coil 1 resistance: learning baseline (12 of 50 windows)".
+std::string ok_message(std::string_view subject, const SeriesStatus& status, Level previous,
+                       std::size_t learning_windows);
+// "coil 1 resistance: no estimate for 45 s (timeout 30 s)"
+std::string stale_message(std::string_view subject, double silent_for, double timeout);
+
+}  // namespace ambid::diag

@@ -1,0 +1,68 @@
+#pragma once
+// Non-parametric FRFs from closed-loop data with a periodic excitation (multisine, periodic
+// PRBS): exact DFT of whole periods at the excited lines, transient periods discarded,
+// averaged over blocks of periods, with the variance of every estimate from the spread across
+// blocks.
+//
+// One block is `periods_per_block` (P) consecutive periods. For one reference P = 1 is usual.
+// For several references (the orthogonal multi-channel pattern, e.g. channel j multiplied by
+// H(j, p mod P) of a Hadamard matrix) every block holds P periods over which the reference
+// phasors R (references x P) have full row rank; for each line and block
+//   T_yr = Y R^+,  T_ur = U R^+   (Y outputs x P, U inputs x P; least squares by SVD),
+// any P consecutive periods of a cyclic pattern will do. The plant is the indirect (joint
+// input-output) estimate, unbiased under feedback:
+//   G = T_yr T_ur^+   (= S_yr S_ur^-1; needs references >= inputs and T_ur of full rank).
+// Its variance is the sample variance over blocks of the linearised error
+// (T_yr,b - G T_ur,b) T_ur^+, divided by the number of blocks (variance of the average).
+// The direct estimate G_dir = sum Y U^H (sum U U^H)^-1 over all periods treats u as if it were
+// independent of the noise; under feedback with noise it is biased (towards 1/K).
+//
+// Transients inside the record: with one reference pattern repeated unchanged (P = 1) the loop
+// is in steady state after the discarded transient periods and the line DFTs are exact. The
+// orthogonal pattern changes the references from one period to the next, so every period
+// starts with a free response of the loop whose DFT leaks into all lines (relative error about
+// (closed-loop time constant / period) x sqrt(number of lines) — tens of percent for a dense
+// multisine). For P > 1 the per-block responses are therefore estimated by the local
+// polynomial method (frf_local_polynomial.hpp), which models that transient as a smooth
+// function of frequency around each line (transient_model = automatic).
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "identifier/frequency_domain/frf_local_polynomial.hpp"
+#include "identifier/frf_types.hpp"
+
+namespace ambid::ident {
+
+struct PeriodicFrfOptions {
+  double sample_time = 0.0;
+  Eigen::Index period_samples = 0;       // N
+  std::vector<Eigen::Index> lines;       // excited DFT lines within one period, 0 < k < N/2
+  Eigen::Index first_sample = 0;         // where the first period starts
+  Eigen::Index transient_periods = 1;    // whole periods discarded after first_sample
+  Eigen::Index periods_per_block = 1;    // P (the Hadamard order for the orthogonal pattern)
+  enum class TransientModel { automatic, none, local_polynomial };
+  TransientModel transient_model = TransientModel::automatic;  // automatic: local polynomial when P > 1
+  LocalPolynomialOptions local_polynomial;
+};
+
+struct PeriodicFrf {
+  Frf plant;                  // G, outputs x inputs, indirect, with variance when blocks >= 2
+  Frf plant_direct;           // open-loop formula, biased under feedback (no variance)
+  Frf output_from_reference;  // T_yr, outputs x references, with variance
+  Frf input_from_reference;   // T_ur, inputs x references, with variance
+  // Variance of ONE period's phasor (noise level of the line) from the spread across blocks;
+  // lines x signals; empty when blocks < 2.
+  Eigen::MatrixXd output_noise_variance, input_noise_variance;
+  Eigen::Index blocks = 0;
+  Eigen::Index periods_used = 0;
+};
+
+// r, u, y: samples x signals, deviations. Throws Error for inconsistent sizes or options (a
+// line outside (0, N/2) or repeated, P < references, non-positive sample time), and
+// InsufficientData when fewer than one block remains after the transient, or when at some line
+// the references of a block are not of full rank or T_ur is singular (names the line).
+PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+                                  const PeriodicFrfOptions& options);
+
+}  // namespace ambid::ident
