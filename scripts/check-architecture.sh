@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Checks the include rules of ../shared/design/architecture.md on the source tree:
+#  1. a library's public headers are the .hpp files at its root; headers in its subfolders are
+#     internal and may be included only by the library itself, its tests (tests/LIB/) and bench/;
+#  2. arrows point one way: core <- plant_sim, identifier <- diagnostics <- services;
+#  3. no DDS header outside services/.
+# Prints every violation as file:line and exits 1 when there is one. Run by ctest (architecture).
+set -euo pipefail
+cd "${1:-$(dirname "$0")/..}"
+
+sources() { find "$@" -name '*.cpp' -o -name '*.hpp' -o -name '*.h'; }
+status=0
+fail() { echo "$1"; status=1; }
+
+# 1. Internal headers: LIB/SUB/x.hpp included from outside LIB, tests/LIB and bench.
+for lib in core plant_sim identifier diagnostics services/bus; do
+  outside=$(sources core plant_sim identifier diagnostics services tests bench examples 2>/dev/null |
+            grep -v -e "^$lib/" -e "^tests/$lib/" -e "^bench/" || true)
+  [ -n "$outside" ] || continue
+  while IFS= read -r hit; do
+    fail "internal header of $lib included from outside it: $hit"
+  done < <(echo "$outside" | xargs grep -nE "#include \"$lib/[a-z0-9_]+/" || true)
+done
+
+# 2. Dependency direction: LIB may not include the folders listed after it.
+forbid() {
+  local lib=$1; shift
+  for other in "$@"; do
+    while IFS= read -r hit; do
+      fail "$lib must not depend on $other: $hit"
+    done < <(sources "$lib" | xargs grep -nE "#include \"$other/" || true)
+  done
+}
+forbid core plant_sim identifier diagnostics services
+forbid plant_sim identifier diagnostics services
+forbid identifier plant_sim diagnostics services
+forbid diagnostics services
+
+# 3. DDS headers (vendor APIs and generated types) only in services/.
+while IFS= read -r hit; do
+  fail "DDS header outside services/: $hit"
+done < <(sources core plant_sim identifier diagnostics | xargs grep -nE '#include [<"](fastdds|fastrtps|fastcdr|dds/|idl/)' || true)
+
+[ $status -eq 0 ] && echo "architecture: include rules hold"
+exit $status
