@@ -1,12 +1,12 @@
 #include "core/state_space.hpp"
 
 #include <cmath>
+#include <complex>
 #include <sstream>
 #include <string>
 
-#include <unsupported/Eigen/MatrixFunctions>
-
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid {
 namespace {
@@ -55,14 +55,14 @@ DiscreteSystem c2d_zoh(const ContinuousSystem& sys, double sample_time) {
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n + m, n + m);
   M.topLeftCorner(n, n) = sys.A * sample_time;
   M.topRightCorner(n, m) = sys.B * sample_time;
-  const Eigen::MatrixXd E = M.exp();
+  const Eigen::MatrixXd E = linalg::matrix_exp(M);
   return DiscreteSystem{E.topLeftCorner(n, n), E.topRightCorner(n, m), sys.C, sys.D, sample_time};
 }
 
 ContinuousSystem d2c_zoh(const DiscreteSystem& sys) {
   sys.validate();
   const Eigen::Index n = sys.states(), m = sys.inputs();
-  const Eigen::VectorXcd eig = sys.A.eigenvalues();
+  const Eigen::VectorXcd eig = linalg::eigenvalues(sys.A);
   const double scale = std::max(1.0, sys.A.norm());
   for (Eigen::Index i = 0; i < eig.size(); ++i) {
     const std::complex<double> z = eig(i);
@@ -78,7 +78,7 @@ ContinuousSystem d2c_zoh(const DiscreteSystem& sys) {
   Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n + m, n + m);
   M.topLeftCorner(n, n) = sys.A;
   M.topRightCorner(n, m) = sys.B;
-  const Eigen::MatrixXd L = M.log() / sys.sample_time;
+  const Eigen::MatrixXd L = linalg::matrix_log(M) / sys.sample_time;
   if (!L.allFinite()) throw Error("d2c: matrix logarithm did not converge");
   return ContinuousSystem{L.topLeftCorner(n, n), L.topRightCorner(n, m), sys.C, sys.D};
 }
@@ -105,7 +105,7 @@ Eigen::MatrixXd simulate(const DiscreteSystem& sys, const Eigen::MatrixXd& u) {
   return simulate(sys, u, Eigen::VectorXd::Zero(sys.states()));
 }
 
-Eigen::VectorXcd poles(const ContinuousSystem& sys) { return sys.A.eigenvalues(); }
-Eigen::VectorXcd poles(const DiscreteSystem& sys) { return sys.A.eigenvalues(); }
+Eigen::VectorXcd poles(const ContinuousSystem& sys) { return linalg::eigenvalues(sys.A); }
+Eigen::VectorXcd poles(const DiscreteSystem& sys) { return linalg::eigenvalues(sys.A); }
 
 }  // namespace ambid

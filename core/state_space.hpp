@@ -1,7 +1,7 @@
 #pragma once
 // Linear time-invariant state-space systems, continuous and discrete, and the exact
 // zero-order-hold map between them (seed 000 eq. 7-8).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid {
 

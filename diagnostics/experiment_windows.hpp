@@ -4,7 +4,7 @@
 // and the scatter of the windows of the baseline experiments is what the baseline learns.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "identifier/frequency_domain/frf_open_loop.hpp"

@@ -12,7 +12,7 @@
 //   Papers that write negative feedback u = d - K' y have K' = -K.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::ident {
 

@@ -14,7 +14,7 @@
 // and M_eff the number of segments reduced for the correlation of overlapping windowed
 // segments (Welch 1967). Coherence: multiple coherence of each output (input) with all
 // references, gamma^2 = [S_yr S_rr^-1 S_ry]_ii / S_yy,ii.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frf_types.hpp"
 

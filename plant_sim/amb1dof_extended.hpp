@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "plant_sim/plant.hpp"

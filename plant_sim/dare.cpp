@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::sim {
 namespace {
@@ -46,10 +47,10 @@ void check_inputs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eige
           "a matrix has a non-finite entry");
   require_symmetric(Q, "Q");
   require_symmetric(R, "R");
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> r_eig(R);
-  if (!(r_eig.eigenvalues().minCoeff() > 1e-14 * std::max(1.0, R.norm()))) {
+  const double r_lowest = linalg::symmetric_eigenvalues(R).minCoeff();
+  if (!(r_lowest > 1e-14 * std::max(1.0, R.norm()))) {
     std::ostringstream msg;
-    msg << "R must be positive definite; smallest eigenvalue " << r_eig.eigenvalues().minCoeff();
+    msg << "R must be positive definite; smallest eigenvalue " << r_lowest;
     require(false, msg.str());
   }
   Eigen::MatrixXd joint = Eigen::MatrixXd::Zero(n + m, n + m);
@@ -60,7 +61,7 @@ void check_inputs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eige
     joint.bottomLeftCorner(m, n) = N.transpose();
   }
   joint = 0.5 * (joint + joint.transpose());
-  const double lowest = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(joint).eigenvalues().minCoeff();
+  const double lowest = linalg::symmetric_eigenvalues(joint).minCoeff();
   if (lowest < -1e-10 * std::max(1.0, joint.norm())) {
     std::ostringstream msg;
     msg << "[Q N; N' R] must be positive semidefinite; smallest eigenvalue " << lowest;
@@ -71,7 +72,7 @@ void check_inputs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eige
 // PBH test: every eigenvalue of A on or outside the unit circle must be controllable.
 void check_stabilisable(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   const Eigen::Index n = A.rows(), m = B.cols();
-  const Eigen::VectorXcd eig = A.eigenvalues();
+  const Eigen::VectorXcd eig = linalg::eigenvalues(A);
   Eigen::MatrixXd AB(n, n + m);
   AB << A, B;
   const double scale = std::max(1.0, AB.norm());
@@ -82,7 +83,7 @@ void check_stabilisable(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
     pbh.leftCols(n) = A.cast<std::complex<double>>();
     pbh.leftCols(n).diagonal().array() -= z;
     pbh.rightCols(m) = B.cast<std::complex<double>>();
-    const double smallest = Eigen::JacobiSVD<Eigen::MatrixXcd>(pbh).singularValues()(n - 1);
+    const double smallest = linalg::singular_values(pbh)(n - 1);
     if (smallest <= 1e-11 * scale) {
       std::ostringstream msg;
       msg << "the pair (A, B) is not stabilisable: eigenvalue " << z.real()
@@ -101,7 +102,7 @@ Eigen::MatrixXd dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B
   Eigen::MatrixXd cross = A.transpose() * X * B;
   if (N.size() != 0) cross += N;
   const Eigen::MatrixXd S = R + B.transpose() * X * B;
-  return A.transpose() * X * A - X - cross * S.ldlt().solve(cross.transpose()) + Q;
+  return A.transpose() * X * A - X - cross * linalg::ldlt_solve(S, cross.transpose()) + Q;
 }
 
 Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
@@ -112,13 +113,13 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
   const Eigen::Index n = A.rows();
 
   // Remove the cross term: u = v - R^{-1} N' x gives A - B R^{-1} N' and Q - N R^{-1} N'.
-  const Eigen::LLT<Eigen::MatrixXd> r_chol(R);
   Eigen::MatrixXd Ak = A, Hk = Q;
   if (N.size() != 0) {
-    Ak -= B * r_chol.solve(N.transpose());
-    Hk -= N * r_chol.solve(N.transpose());
+    const Eigen::MatrixXd RinvNt = linalg::llt_solve(R, N.transpose());
+    Ak -= B * RinvNt;
+    Hk -= N * RinvNt;
   }
-  Eigen::MatrixXd Gk = B * r_chol.solve(B.transpose());
+  Eigen::MatrixXd Gk = B * linalg::llt_solve(R, B.transpose());
   Gk = 0.5 * (Gk + Gk.transpose());
   Hk = 0.5 * (Hk + Hk.transpose());
 
@@ -127,9 +128,9 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
   bool converged = false;
   double change = 0.0;
   for (int k = 0; k < kMaxIterations && !converged; ++k) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> W(I + Gk * Hk);
-    const Eigen::MatrixXd WA = W.solve(Ak);
-    const Eigen::MatrixXd WG = W.solve(Gk);
+    const Eigen::MatrixXd W = I + Gk * Hk;
+    const Eigen::MatrixXd WA = linalg::lu_solve(W, Ak).x;
+    const Eigen::MatrixXd WG = linalg::lu_solve(W, Gk).x;
     Eigen::MatrixXd H_next = Hk + Ak.transpose() * Hk * WA;
     Eigen::MatrixXd G_next = Gk + Ak * WG * Ak.transpose();
     Ak = Ak * WA;
@@ -154,8 +155,8 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
   // The solution must be stabilising.
   Eigen::MatrixXd cross = A.transpose() * Hk * B;
   if (N.size() != 0) cross += N;
-  const Eigen::MatrixXd K = (R + B.transpose() * Hk * B).ldlt().solve(cross.transpose());
-  const double radius = (A - B * K).eigenvalues().cwiseAbs().maxCoeff();
+  const Eigen::MatrixXd K = linalg::ldlt_solve(R + B.transpose() * Hk * B, cross.transpose());
+  const double radius = linalg::spectral_radius(A - B * K);
   if (!(radius < 1.0)) {
     std::ostringstream msg;
     msg << "no stabilising solution: closed-loop spectral radius " << radius

@@ -2,7 +2,7 @@
 // Discrete algebraic Riccati equation (DARE) by the structure-preserving doubling algorithm
 // (SDA; Chu, Fan, Lin, Wang 2004). The doubling converges quadratically to the stabilising
 // solution whenever it exists, and needs neither an invertible A nor an ordered Schur form.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::sim {
 

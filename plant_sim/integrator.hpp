@@ -1,7 +1,7 @@
 #pragma once
 // Fixed-step classical Runge-Kutta (RK4) over one sample of a Plant, with the input u and the
 // disturbance w held constant over the sample (zero-order hold).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "plant_sim/plant.hpp"
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "plant_sim/plant.hpp"

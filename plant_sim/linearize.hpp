@@ -1,6 +1,6 @@
 #pragma once
 // Numerical linearisation of any Plant at its equilibrium by central differences.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "plant_sim/plant.hpp"

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/dare.hpp"
 
 namespace ambid::sim {
@@ -13,8 +14,8 @@ LqrGain dlqr(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::Ma
   out.X = solve_dare(A, B, Q, R, N);
   Eigen::MatrixXd cross = A.transpose() * out.X * B;
   if (N.size() != 0) cross += N;
-  out.K = (R + B.transpose() * out.X * B).ldlt().solve(cross.transpose());
-  out.closed_loop_poles = (A - B * out.K).eigenvalues();
+  out.K = linalg::ldlt_solve(R + B.transpose() * out.X * B, cross.transpose());
+  out.closed_loop_poles = linalg::eigenvalues(A - B * out.K);
   return out;
 }
 
@@ -31,7 +32,7 @@ ObserverGain predictor_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
   ObserverGain out;
   out.L = dual.K.transpose();
   out.P = dual.X;
-  out.observer_poles = (A - out.L * C).eigenvalues();
+  out.observer_poles = linalg::eigenvalues(A - out.L * C);
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // Discrete linear-quadratic regulator and, by duality, the steady-state prediction observer
 // (Kalman predictor) gain. Both solve one DARE (dare.hpp).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::sim {
 

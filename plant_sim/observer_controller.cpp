@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/lqr.hpp"
 
 namespace ambid::sim {
@@ -202,11 +204,11 @@ DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& inpu
 
   // u = M (P Dc Sy Cp xp + P Cc xc + r),  M = (I - P Dc Sy Dp)^{-1}.
   const Eigen::MatrixXd loop = Eigen::MatrixXd::Identity(m, m) - P * controller.D * Sy * plant.D;
-  const Eigen::FullPivLU<Eigen::MatrixXd> loop_lu(loop);
-  if (!loop_lu.isInvertible())
+  const std::optional<Eigen::MatrixXd> loop_inverse = linalg::regular_inverse(loop);
+  if (!loop_inverse)
     throw Error("closed loop: the algebraic loop through the plant's D and the controller's D "
                 "is singular (I - D_c D_p not invertible)");
-  const Eigen::MatrixXd M = loop_lu.inverse();
+  const Eigen::MatrixXd& M = *loop_inverse;
   Eigen::MatrixXd Ku(m, n + nc);
   Ku << P * controller.D * Sy * plant.C, P * controller.C;
   Ku = (M * Ku).eval();
@@ -234,7 +236,7 @@ DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& inpu
 
 double spectral_radius(const DiscreteSystem& sys) {
   if (sys.states() == 0) return 0.0;
-  return sys.A.eigenvalues().cwiseAbs().maxCoeff();
+  return linalg::spectral_radius(sys.A);
 }
 
 }  // namespace ambid::sim

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::sim {
 namespace {
@@ -96,7 +97,7 @@ LoopSystem lead_lag_loop(const LeadLagLoop& loop, double T, const std::string& w
   // Tustin: Ad = M (I + A T/2), Bd = M B T, Cd = C M, Dd = D + C M B T/2, M = (I - A T/2)^-1.
   const Eigen::Index n = A.rows();
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
-  const Eigen::MatrixXd M = (I - A * (T / 2)).inverse();
+  const Eigen::MatrixXd M = linalg::inverse(I - A * (T / 2));
   return LoopSystem{M * (I + A * (T / 2)), M * B * T, C * M, D + C * M * B * (T / 2)};
 }
 

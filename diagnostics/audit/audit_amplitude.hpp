@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "diagnostics/audit/audit_replay.hpp"

@@ -15,7 +15,7 @@
 // extended model's residual e0 - d, which is noise under H0 and, for a right effect, also
 // under H1 (for a wrong one it still holds model error, which only makes the test stricter).
 // P(z > z_obs | H0) is the false-acceptance probability of one candidate.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "diagnostics/audit/audit_replay.hpp"
 

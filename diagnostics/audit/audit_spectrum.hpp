@@ -4,7 +4,7 @@
 // the excitation (a wrong plant) rather than not (a disturbance or noise).
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::diagnostics {
 

@@ -6,9 +6,10 @@
 #include <set>
 #include <utility>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -63,9 +64,10 @@ Fit fit(const std::vector<Deviation>& d, const std::vector<FaultHypothesis>& hyp
     f.scale = Eigen::VectorXd::Zero(k);
     if (k > 0) {
       const Eigen::VectorXd w = var.cwiseSqrt().cwiseInverse();
-      const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(w.asDiagonal() * S);
-      if (qr.rank() < k) return f;  // the hypotheses are not distinguishable on these parameters
-      f.scale = qr.solve(w.cwiseProduct(y));
+      const linalg::RankedSolution<Eigen::VectorXd> ls =
+          linalg::qr_solve(Eigen::MatrixXd(w.asDiagonal() * S), Eigen::VectorXd(w.cwiseProduct(y)));
+      if (ls.rank < k) return f;  // the hypotheses are not distinguishable on these parameters
+      f.scale = ls.x;
     }
     f.predicted = S * f.scale.asDiagonal();
     const Eigen::VectorXd total = f.predicted.rowwise().sum();

@@ -18,7 +18,7 @@
 #include <map>
 #include <string>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "core/state_space.hpp"

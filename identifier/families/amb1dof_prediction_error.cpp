@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/LU>  // closed-form fixed-size 3x3 inverse only (kalman_predictor_gain)
 #include <ceres/ceres.h>
 
 #include "core/error.hpp"
@@ -167,6 +168,8 @@ Eigen::Matrix<double, 4, 3> kalman_predictor_gain(const Eigen::Matrix4d& A, cons
   Eigen::Matrix<double, 4, 3> K = Eigen::Matrix<double, 4, 3>::Zero();
   for (int it = 0; it < 20000; ++it) {
     const Eigen::Matrix3d S = C * P * C.transpose() + R;
+    // Closed-form 3x3 inverse, not core/linalg: up to 20000 steps per record, where a dynamic LU
+    // would allocate every step.
     K = A * P * C.transpose() * S.inverse();
     Eigen::Matrix4d next = A * P * A.transpose() - K * S * K.transpose();
     next = 0.5 * (next + next.transpose()).eval();

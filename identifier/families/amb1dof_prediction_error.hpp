@@ -29,7 +29,7 @@
 // It does not include a model-structure error (e.g. the nonlinearity at large excitation).
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 

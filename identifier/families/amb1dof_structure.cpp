@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 
@@ -61,12 +63,12 @@ Eigen::Matrix4d physical_transform(const ContinuousSystem& c) {
 }
 
 Eigen::Matrix4d checked_inverse(const Eigen::Matrix4d& T) {
-  const Eigen::FullPivLU<Eigen::Matrix4d> lu(T);
-  const double rcond = 1.0 / (T.norm() * lu.inverse().norm());
-  if (!lu.isInvertible() || !(rcond > 1e-12))
+  const std::optional<Eigen::MatrixXd> inverse = linalg::regular_inverse(T);
+  const double rcond = inverse ? 1.0 / (T.norm() * inverse->norm()) : 0.0;
+  if (!inverse || !(rcond > 1e-12))
     throw Error("amb1dof physical coordinates: [C_x; C_x Ac; C_i1; C_i2] is singular (reciprocal condition " +
                 std::to_string(rcond) + "): the outputs and the rate of x do not determine the state");
-  return lu.inverse();
+  return *inverse;
 }
 
 void check_shape(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C) {

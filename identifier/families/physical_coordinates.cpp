@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -14,10 +16,10 @@ std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "
 
 // Inverse of a square matrix with a rank check; `what` names it in the error.
 Eigen::MatrixXd checked_inverse(const Eigen::MatrixXd& m, const std::string& what, double* condition = nullptr) {
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(m);
-  if (!lu.isInvertible())
-    throw Error(what + " is singular (rank " + std::to_string(lu.rank()) + " of " + std::to_string(m.rows()) + ")");
-  const Eigen::MatrixXd inv = lu.inverse();
+  const std::optional<Eigen::MatrixXd> regular = linalg::regular_inverse(m);
+  if (!regular)
+    throw Error(what + " is singular (rank " + std::to_string(linalg::rank(m)) + " of " + std::to_string(m.rows()) + ")");
+  const Eigen::MatrixXd& inv = *regular;
   const double cond = m.lpNorm<1>() * inv.lpNorm<1>();  // entrywise 1-norms: a cheap upper-bound estimate
   if (condition) *condition = cond;
   if (!(cond < 1.0 / (1e3 * std::numeric_limits<double>::epsilon()))) {

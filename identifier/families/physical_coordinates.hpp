@@ -12,7 +12,7 @@
 //
 // Measured-state coordinates (seed 000 eq. 15): when the true output matrix C is square and
 // known, T = C^-1 Chat maps the realisation to the physical states.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 

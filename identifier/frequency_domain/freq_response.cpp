@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -19,12 +20,12 @@ Eigen::MatrixXcd resolvent_response(const Eigen::MatrixXd& A, const Eigen::Matri
   if (n == 0) return D.cast<cd>();
   Eigen::MatrixXcd M = -A.cast<cd>();
   M.diagonal().array() += z;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> lu(M);
-  // rcond() is an estimate; a pole on the evaluation point gives rcond ~ eps or a non-finite
+  const linalg::ConditionedSolution<Eigen::MatrixXcd> resolvent = linalg::lu_solve(M, B.cast<cd>());
+  // rcond is an estimate; a pole on the evaluation point gives rcond ~ eps or a non-finite
   // solution.
-  if (!(lu.rcond() > 1e-13))
+  if (!(resolvent.rcond > 1e-13))
     throw Error("frequency response: the system has a pole at " + where + " (the response is infinite)");
-  Eigen::MatrixXcd out = C.cast<cd>() * lu.solve(B.cast<cd>()) + D.cast<cd>();
+  Eigen::MatrixXcd out = C.cast<cd>() * resolvent.x + D.cast<cd>();
   if (!out.allFinite()) throw Error("frequency response: not finite at " + where);
   return out;
 }

@@ -2,7 +2,7 @@
 // Frequency responses of state-space models: continuous C (jw I - A)^-1 B + D, discrete
 // C (e^{jwT} I - A)^-1 B + D (z on the unit circle), and the contract controller
 // (experiment-format.md: xc[k+1] = A xc + B v, uf = C xc + D v, from v to uf). w in rad/s.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "core/state_space.hpp"

@@ -2,7 +2,7 @@
 // Exact DFT of whole periods at chosen lines (the leakage-free spectrum of periodic signals).
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::ident {
 

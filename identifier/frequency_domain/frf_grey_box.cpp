@@ -8,6 +8,7 @@
 #include <ceres/ceres.h>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/frequency_domain/freq_response.hpp"
 
 namespace ambid::ident {
@@ -149,11 +150,8 @@ GreyBoxFit fit_grey_box(const Frf& frf, const std::function<ContinuousSystem(con
   double* jac[1] = {J.data()};
   if (!cost->Evaluate(params, r.data(), jac)) throw Error("grey-box fit: the model refuses the fitted parameters");
   out.misfit = r.squaredNorm() / static_cast<double>(m);  // = mean |w e|^2 over elements and lines
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);
-  if (qr.rank() == p) {
-    const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(p, p).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
-    Eigen::MatrixXd cov = qr.colsPermutation() * (Rinv * Rinv.transpose()) * qr.colsPermutation().transpose();
+  Eigen::MatrixXd cov = linalg::qr_inverse_gram(J);  // empty when J is rank deficient
+  if (cov.size() != 0) {
     if (!noise) cov *= m > p ? r.squaredNorm() / static_cast<double>(m - p) : 0.0;
     out.covariance = res.scale.asDiagonal() * cov * res.scale.asDiagonal();
     out.standard_deviation = out.covariance.diagonal().cwiseMax(0.0).cwiseSqrt();

@@ -11,7 +11,7 @@
 #include <functional>
 #include <string>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/frf_types.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Small dense helpers of the frequency-domain identifier (SVD-based least squares; never
 // normal equations).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::ident {
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 
@@ -85,12 +86,11 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
         throw InsufficientData("local polynomial FRF: a regressor vanishes around line " + std::to_string(kc));
       Phi.col(col) /= norms(col);
     }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXcd> qr(Phi);
-    qr.setThreshold(1e-10);
-    if (qr.rank() < unknowns)
+    const linalg::RankedSolution<Eigen::MatrixXcd> ls = linalg::qr_solve(Phi, rhs, 1e-10);
+    if (ls.rank < unknowns)
       throw InsufficientData("local polynomial FRF: the local problem around line " + std::to_string(kc) +
-                             " is rank deficient (rank " + std::to_string(qr.rank()) + " of " + std::to_string(unknowns) + ")");
-    const Eigen::MatrixXcd theta = qr.solve(rhs);
+                             " is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(unknowns) + ")");
+    const Eigen::MatrixXcd& theta = ls.x;
     Eigen::MatrixXcd G(nz, nx);
     for (Eigen::Index s = 0; s < nx; ++s) G.col(s) = theta.row(s * D1).transpose() / norms(s * D1);
     out.push_back(G);

@@ -13,7 +13,7 @@
 // resonances.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 namespace ambid::ident {
 

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <numbers>
+#include <utility>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/frequency_domain/freq_response.hpp"
 
 namespace ambid::ident {
@@ -50,13 +52,13 @@ LoopResponse loop_response(const StateSpaceController& controller, const LoopSig
   Eigen::MatrixXcd E = Eigen::MatrixXcd::Zero(nu, nr);
   if (nr != 0) E = P;
   const Eigen::MatrixXcd IminusPKu = Eigen::MatrixXcd::Identity(nu, nu) - P * Ku;
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXcd> qr(IminusPKu);
-  if (qr.rank() < nu)
+  linalg::RankedSolution<Eigen::MatrixXcd> K = linalg::qr_solve(IminusPKu, Eigen::MatrixXcd(P * Ky));
+  if (K.rank < nu)
     throw Error("loop response: the controller's path from u back to u makes I - Ku singular at " +
                 std::to_string(omega / (2.0 * std::numbers::pi)) + " Hz");
   LoopResponse out;
-  out.K = qr.solve(Eigen::MatrixXcd(P * Ky));
-  out.M = qr.solve(Eigen::MatrixXcd(P * Kr + E));
+  out.K = std::move(K.x);
+  out.M = linalg::qr_solve(IminusPKu, Eigen::MatrixXcd(P * Kr + E)).x;
   return out;
 }
 

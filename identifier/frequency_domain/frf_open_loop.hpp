@@ -10,7 +10,7 @@
 // With the excitation r entering as u = K y + M r (frf_loop.hpp), T = T_yr M^+.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/experiment.hpp"
 #include "identifier/frequency_domain/frf_loop.hpp"

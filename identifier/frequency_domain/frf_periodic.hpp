@@ -27,7 +27,7 @@
 // function of frequency around each line (transient_model = automatic).
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frequency_domain/frf_local_polynomial.hpp"
 #include "identifier/frf_types.hpp"

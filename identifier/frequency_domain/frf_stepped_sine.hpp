@@ -10,7 +10,7 @@
 // No variance: a single window per frequency has no spread to estimate it from.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frf_types.hpp"
 

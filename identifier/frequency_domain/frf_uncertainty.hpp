@@ -9,7 +9,7 @@
 // contour").
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frf_types.hpp"
 

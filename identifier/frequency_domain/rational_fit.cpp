@@ -4,22 +4,11 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/frequency_domain/rational_fit_detail.hpp"
 
 namespace ambid::ident {
 namespace {
-
-// cov = Pi R^-1 R^-T Pi^T from J Pi = Q R (no normal equations). Empty when J is rank deficient.
-Eigen::MatrixXd covariance_from_jacobian(const Eigen::MatrixXd& J) {
-  const Eigen::Index p = J.cols();
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);
-  qr.setThreshold(1e-14);
-  if (qr.rank() < p) return {};
-  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(p, p).triangularView<Eigen::Upper>();
-  const Eigen::MatrixXd Rinv = R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(p, p));
-  const Eigen::MatrixXd core = Rinv * Rinv.transpose();
-  return qr.colsPermutation() * core * qr.colsPermutation().transpose();
-}
 
 // First-order standard deviation sqrt(E|dp|^2) of every root p of the monic denominator
 // from the covariance of its low coefficients: dp = -sum_i p^i da_i / D'(p) (scaled p).
@@ -71,7 +60,7 @@ RationalFit fit_rational(const Eigen::VectorXd& frequency_hz, const Eigen::Vecto
   out.misfit = detail::weighted_misfit(data, c.b, c.a_low);
 
   const Eigen::MatrixXd J = detail::output_error_jacobian(data, c);
-  Eigen::MatrixXd cov = covariance_from_jacobian(J);
+  Eigen::MatrixXd cov = linalg::qr_inverse_gram(J, 1e-14);  // empty when J is rank deficient
   if (cov.size() != 0 && data.weighting != FitWeighting::noise) {
     const double dof = static_cast<double>(2 * out.lines - out.parameters);
     const double s2 = dof > 0.0 ? 2.0 * out.misfit * static_cast<double>(out.lines) / dof : std::numeric_limits<double>::quiet_NaN();

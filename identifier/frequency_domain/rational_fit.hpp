@@ -21,7 +21,7 @@
 #include <complex>
 #include <string>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 

@@ -2,7 +2,7 @@
 // Internal to rational_fit_*.cpp: the fit data after compensation and weighting.
 #include <complex>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frequency_domain/rational_fit.hpp"
 

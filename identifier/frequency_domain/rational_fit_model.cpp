@@ -2,9 +2,8 @@
 #include <cmath>
 #include <string>
 
-#include <Eigen/Eigenvalues>
-
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/frequency_domain/rational_fit.hpp"
 #include "identifier/frequency_domain/rational_fit_detail.hpp"
 
@@ -19,7 +18,7 @@ Eigen::VectorXcd roots(const Eigen::VectorXd& c) {
   Eigen::MatrixXd companion = Eigen::MatrixXd::Zero(n, n);
   companion.topRightCorner(n - 1, n - 1).setIdentity();
   companion.row(n - 1) = -c.head(n).transpose() / c(n);
-  return Eigen::EigenSolver<Eigen::MatrixXd>(companion, false).eigenvalues();
+  return linalg::eigenvalues(companion);
 }
 
 void check(const RationalModel& m) {

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/frequency_domain/rational_fit.hpp"
 

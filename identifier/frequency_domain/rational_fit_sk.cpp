@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/frequency_domain/rational_fit_detail.hpp"
 
 namespace ambid::ident::detail {
@@ -123,12 +124,11 @@ Coefficients sanathanan_koerner(const FitData& d, int m, int n, int iterations, 
       if (!(colnorm(j) > 0.0)) throw InsufficientData("rational fit: a regressor column is zero");
       A.col(j) /= colnorm(j);
     }
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-    qr.setThreshold(1e-13);
-    if (qr.rank() < p)
+    const linalg::RankedSolution<Eigen::VectorXd> ls = linalg::qr_solve(A, rhs, 1e-13);
+    if (ls.rank < p)
       throw InsufficientData("rational fit: the least-squares problem of order (" + std::to_string(m) + ", " + std::to_string(n) +
-                             ") is rank deficient (rank " + std::to_string(qr.rank()) + " of " + std::to_string(p) + ")");
-    const Eigen::VectorXd theta = (qr.solve(rhs).array() / colnorm.array()).matrix();
+                             ") is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(p) + ")");
+    const Eigen::VectorXd theta = (ls.x.array() / colnorm.array()).matrix();
     const Eigen::VectorXd a_new = theta.tail(na);
     const double change = (a_new - c.a_low).norm() / (1.0 + a_new.norm());
     c.b = theta.head(nb);

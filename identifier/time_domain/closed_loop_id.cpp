@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/time_domain/kalman_gain.hpp"
 
 namespace ambid::ident {
@@ -16,11 +17,6 @@ std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "
 Index find(const std::vector<std::string>& names, const std::string& name) {
   const auto it = std::find(names.begin(), names.end(), name);
   return it == names.end() ? -1 : static_cast<Index>(it - names.begin());
-}
-
-double spectral_radius(const Eigen::MatrixXd& A) {
-  if (A.size() == 0) return 0.0;
-  return A.eigenvalues().cwiseAbs().maxCoeff();
 }
 
 }  // namespace
@@ -84,7 +80,7 @@ ClosedLoopIdResult identify_with_known_controller(const Eigen::MatrixXd& r, cons
   const ControllerMarkov cm = controller_markov(controller.A, controller.B, controller.C, controller.D, m,
                                                 options.markov_count);  // refuses feedthrough from u
   out.controller_spectral_radius =
-      spectral_radius(controller.A + controller.B.leftCols(m) * controller.C);
+      linalg::spectral_radius(controller.A + controller.B.leftCols(m) * controller.C);
 
   ArxOptions arx_options;
   arx_options.order = options.arx_order;

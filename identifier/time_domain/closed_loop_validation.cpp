@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -95,7 +96,7 @@ Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownContro
     nrmse.setConstant(std::numeric_limits<double>::infinity());
     return nrmse;
   }
-  const Eigen::VectorXd x0 = free.colPivHouseholderQr().solve(residual);
+  const Eigen::VectorXd x0 = linalg::qr_solve(free, residual).x;
   const Eigen::VectorXd e = residual - free * x0;
   for (Index j = 0; j < p; ++j) nrmse(j) = e.segment(j * N, N).norm();
   return nrmse;

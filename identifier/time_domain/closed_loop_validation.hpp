@@ -8,7 +8,7 @@
 // term of every state equation (2 n numbers against samples x outputs residuals: they remove
 // the start transient and the operating-point shift of a plant off nominal, which settles at
 // other bias currents and has no term in the linear model; not the model error).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/time_domain/closed_loop_id.hpp"

@@ -1,8 +1,10 @@
 #include "identifier/time_domain/deadbeat_realization.hpp"
 
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/time_domain/instrumental_variables.hpp"
 
 namespace ambid::ident {
@@ -53,29 +55,24 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
   out.cbar.topLeftCorner(p, n) = C;
   out.cbar.bottomLeftCorner(m, n) = -F;
   out.cbar.bottomRightCorner(m, ni) = Fe;
-  out.cbar_invertible = p + m == n + ni && Eigen::FullPivLU<Eigen::MatrixXd>(out.cbar).isInvertible();
+  out.cbar_invertible = p + m == n + ni && linalg::rank(out.cbar) == n + ni;
 
   // Left inverse of [C; -F] taking the measured states from y: x = C+ y + N (-F N)+ (...).
-  const Eigen::FullPivLU<Eigen::MatrixXd> clu(C);
-  if (clu.rank() != p)
+  const Eigen::Index c_rank = linalg::rank(C);
+  if (c_rank != p)
     throw Error("deadbeat realisation: the output matrix C (" + dims(C) + ") must have full row rank, rank " +
-                std::to_string(clu.rank()));
-  const Eigen::MatrixXd Cp = C.completeOrthogonalDecomposition().pseudoInverse();  // n x p
-  Eigen::MatrixXd Nc(n, n - p);
-  if (n > p) {
-    const Eigen::MatrixXd K = clu.kernel();
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(K);
-    Nc = qr.householderQ() * Eigen::MatrixXd::Identity(n, n - p);
-  }
+                std::to_string(c_rank));
+  const Eigen::MatrixXd Cp = linalg::pseudo_inverse(C).pinv;  // n x p
+  const Eigen::MatrixXd Nc = linalg::null_space(C);            // n x (n - p)
   const Eigen::MatrixXd Fz = -F * Nc;  // m x (n - p)
   Eigen::MatrixXd Fzp = Eigen::MatrixXd::Zero(n - p, m);
   if (n > p) {
-    const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Fz);
-    if (cod.rank() != n - p)
+    linalg::PseudoInverse fz_inverse = linalg::pseudo_inverse(Fz);
+    if (fz_inverse.rank != n - p)
       throw Error("deadbeat realisation: the feedback does not observe the unmeasured states (-F N has rank " +
-                  std::to_string(cod.rank()) + " of " + std::to_string(n - p) +
+                  std::to_string(fz_inverse.rank) + " of " + std::to_string(n - p) +
                   "): the outputs and the feedback do not determine the state");
-    Fzp = cod.pseudoInverse();
+    Fzp = std::move(fz_inverse.pinv);
   }
   out.state_map.resize(n, p + m);
   out.state_map << Cp + Nc * Fzp * F * Cp, Nc * Fzp;

@@ -29,7 +29,7 @@
 // The method assumes the controller's observer has converged to the true state (x_hat = x):
 // exact for noise-free data when the observer's model is the plant; biased by the observer's
 // model error otherwise (the paper's examples II and III).
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/time_domain/least_squares.hpp"

@@ -5,8 +5,10 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -93,12 +95,12 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
   Eigen::MatrixXd U, V, Hshift;
   Eigen::VectorXd sv;
   {
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(H0, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    out.hankel_singular_values = svd.singularValues();
+    linalg::Svd svd = linalg::svd(H0);
+    out.hankel_singular_values = svd.S;
     if (!dc) {
-      U = svd.matrixU();
-      V = svd.matrixV();
-      sv = svd.singularValues();
+      U = std::move(svd.U);
+      V = std::move(svd.V);
+      sv = std::move(svd.S);
       Hshift = hankel(markov, r, s, 1);
     }
   }
@@ -112,10 +114,10 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
         C0.block(i * b, j * b, b, b) = R[static_cast<std::size_t>(i + j)];
         C1.block(i * b, j * b, b, b) = R[static_cast<std::size_t>(i + j + 1)];
       }
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(C0, Eigen::ComputeThinU | Eigen::ComputeThinV);
-    U = svd.matrixU();
-    V = svd.matrixV();
-    sv = svd.singularValues();
+    linalg::Svd svd = linalg::svd(C0);
+    U = std::move(svd.U);
+    V = std::move(svd.V);
+    sv = std::move(svd.S);
     out.correlation_singular_values = sv;
     Hshift = C1;
   }
@@ -148,7 +150,7 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
   } else {
     const Eigen::MatrixXd P = (Un * sq.asDiagonal()).topRows(p * r);  // observability matrix, p r x n
     sys.C = P.topRows(p);
-    sys.B = P.colPivHouseholderQr().solve(H0.leftCols(m));
+    sys.B = linalg::qr_solve(P, Eigen::MatrixXd(H0.leftCols(m))).x;
   }
   return out;
 }

@@ -19,7 +19,7 @@
 // caller may override it with EraOptions::order.
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/time_domain/markov.hpp"

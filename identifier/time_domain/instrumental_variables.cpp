@@ -1,6 +1,7 @@
 #include "identifier/time_domain/instrumental_variables.hpp"
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 
@@ -29,7 +30,7 @@ LeastSquaresSolution solve_instrumental_variables(const Eigen::MatrixXd& phi, co
   const Eigen::MatrixXd Rww = top.leftCols(w);
   Eigen::VectorXd scale(w);
   for (Eigen::Index j = 0; j < w; ++j) scale(j) = Rww.col(j).norm() > 0.0 ? 1.0 / Rww.col(j).norm() : 0.0;
-  const Eigen::VectorXd sv = Eigen::JacobiSVD<Eigen::MatrixXd>(Rww * scale.asDiagonal()).singularValues();
+  const Eigen::VectorXd sv = linalg::singular_values(Eigen::MatrixXd(Rww * scale.asDiagonal()));
   if (!(sv(w - 1) > 1e-10 * sv(0)))
     throw InsufficientData("instrumental variables: the instruments are linearly dependent or zero (reciprocal "
                            "condition " + std::to_string(sv(w - 1) / sv(0)) + "): they cannot separate the regressors");

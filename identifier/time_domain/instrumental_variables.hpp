@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/time_domain/least_squares.hpp"
 

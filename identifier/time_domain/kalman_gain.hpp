@@ -8,7 +8,7 @@
 //   filter gain     K :  [C A; ...; C A^k]        K  = [N_1; ...; N_k]      (4.35)
 // Both are solved by QR least squares (never the normal equations of 4.35 as printed).
 // Lee's Appendix B kalman.m returns AK; here both are returned under explicit names.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "identifier/time_domain/least_squares.hpp"
 #include "identifier/time_domain/markov.hpp"

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -24,9 +25,7 @@ Eigen::MatrixXd triangular_factor(const Eigen::MatrixXd& m) {
   const Eigen::Index k = m.cols();
   Eigen::MatrixXd r = Eigen::MatrixXd::Zero(k, k);
   if (m.rows() == 0) return r;
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(m);
-  const Eigen::Index top = std::min(m.rows(), k);
-  r.topRows(top) = qr.matrixQR().topRows(top).triangularView<Eigen::Upper>();
+  r.topRows(std::min(m.rows(), k)) = linalg::qr_r(m);
   return r;
 }
 
@@ -178,8 +177,8 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
   Eigen::VectorXd scale(p);
   for (Eigen::Index j = 0; j < p; ++j) scale(j) = 1.0 / S11.col(j).norm();
   const Eigen::MatrixXd Se = S11 * scale.asDiagonal();
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Se, Eigen::ComputeFullV);
-  out.singular_values = svd.singularValues();
+  const linalg::Svd svd = linalg::svd(Se);
+  out.singular_values = svd.S;
   const double tol = options.rank_tolerance > 0.0
                          ? options.rank_tolerance
                          : static_cast<double>(std::max(rows_, p)) * std::numeric_limits<double>::epsilon();
@@ -194,7 +193,7 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
                            std::to_string(missing) + (missing == 1 ? " direction" : " directions") +
                            " without excitation, relative tolerance " + num(tol) +
                            "); the missing directions involve " +
-                           involved_regressors(svd.matrixV(), out.rank, p, names_) +
+                           involved_regressors(svd.V, out.rank, p, names_) +
                            " (more exciting data, a lower model order, or regularization)");
   }
   out.condition_number = smax / out.singular_values(p - 1);
@@ -202,10 +201,9 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
     throw InsufficientData("least squares: the regressors are ill-conditioned: condition number " +
                            num(out.condition_number) + " (column-equilibrated) exceeds the limit " +
                            num(options.max_condition) + "; the weakest direction involves " +
-                           involved_regressors(svd.matrixV(), p - 1, p, names_) +
+                           involved_regressors(svd.V, p - 1, p, names_) +
                            " (more exciting data, a lower model order, or regularization)");
-  const Eigen::JacobiSVD<Eigen::MatrixXd> raw(S11);
-  out.raw_condition_number = raw.singularValues()(0) / raw.singularValues()(p - 1);
+  out.raw_condition_number = linalg::condition_number(S11);
 
   const auto S11u = S11.triangularView<Eigen::Upper>();
   out.theta = S11u.solve(S12);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -58,8 +59,7 @@ MarkovSequence feedback_solve(const MarkovSequence& g, const MarkovSequence& f, 
 // Largest singular value, from the largest eigenvalue of the small Gram matrix.
 double spectral_norm(const Eigen::MatrixXd& m) {
   const Eigen::MatrixXd g = m.cols() <= m.rows() ? Eigen::MatrixXd(m.transpose() * m) : Eigen::MatrixXd(m * m.transpose());
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(g, Eigen::EigenvaluesOnly);
-  return std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff()));
+  return std::sqrt(std::max(0.0, linalg::symmetric_eigenvalues(g).maxCoeff()));
 }
 
 }  // namespace

@@ -14,7 +14,7 @@
 // For the steady-state Kalman predictor G = A K (Lee 2.3: the noise enters through AK).
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/time_domain/arx.hpp"

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/time_domain/kalman_gain.hpp"
 
 namespace ambid::ident {
@@ -81,8 +82,7 @@ ProjectionFilterResult identify_projection_filter(const Eigen::MatrixXd& y, cons
     out.plant.sample_time = options.sample_time;
     out.predictor_gain = e.system.B.rightCols(p);
     out.feedback_gain = -e.system.C.bottomRows(m);
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(out.plant.A);
-    if (lu.isInvertible()) out.filter_gain = lu.solve(out.predictor_gain);
+    if (const auto gain = linalg::regular_solve(out.plant.A, out.predictor_gain)) out.filter_gain = *gain;
     return out;
   }
 

@@ -13,7 +13,7 @@
 // Lee's derivation assumes full-state feedback uf = -F x; for a dynamic controller F is only
 // the best static fit. The method needs A invertible (a sampled continuous plant).
 // Nothing here stabilises the identified plant: an unstable plant comes out unstable.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include "core/state_space.hpp"
 #include "identifier/time_domain/arx.hpp"

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "core/linalg.hpp"
 #include "identifier/iso_14839.hpp"
 #include "services/cli/frf_output.hpp"
 #include "services/report/atomic_file.hpp"
@@ -172,7 +173,7 @@ std::vector<std::string> write_frf_plots(const ident::FrfReport& report, const E
     for (Eigen::Index l = 0; l < S.lines(); ++l) {
       const Eigen::MatrixXcd& s = S.value[static_cast<std::size_t>(l)];
       if (peak.loop == "sigma_max") {
-        magnitude(l) = Eigen::JacobiSVD<Eigen::MatrixXcd>(s).singularValues()(0);
+        magnitude(l) = linalg::singular_values(s)(0);
       } else {
         const auto it = std::find(experiment.u_names.begin(), experiment.u_names.end(), peak.loop);
         const auto i = static_cast<Eigen::Index>(it - experiment.u_names.begin());

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <numbers>
 
+#include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"

@@ -4,6 +4,8 @@
 #include <random>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "core/error.hpp"
 #include "plant_sim/dare.hpp"
 #include "plant_sim/lqr.hpp"

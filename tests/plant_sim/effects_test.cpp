@@ -5,6 +5,7 @@
 #include <complex>
 #include <numbers>
 
+#include <Eigen/Dense>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/observer_controller.hpp"

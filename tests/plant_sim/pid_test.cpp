@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "core/error.hpp"
 #include "plant_sim/observer_controller.hpp"
 #include "plant_sim/pid.hpp"
