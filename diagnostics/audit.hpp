@@ -28,7 +28,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/experiment.hpp"
 #include "diagnostics/audit/audit_amplitude.hpp"

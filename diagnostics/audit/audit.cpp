@@ -5,6 +5,8 @@
 #include <complex>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 
 namespace ambid::diagnostics {
