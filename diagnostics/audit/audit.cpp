@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 struct Candidate {
@@ -275,4 +275,4 @@ nlohmann::json extended_model_json(const Experiment& measured, const AuditResult
           {"fit", {{"segment", "validation"}, {"nrmse", per_output}}}};
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -15,7 +15,7 @@
 #include "diagnostics/audit.hpp"
 #include "plant_sim/scenario.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 using ::testing::HasSubstr;
@@ -153,4 +153,4 @@ TEST(AuditInput, RefusesWhatItCannotReplay) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag
