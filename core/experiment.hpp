@@ -11,7 +11,8 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
+
+#include "core/json_value.hpp"
 
 namespace ambid {
 
@@ -63,7 +64,7 @@ struct Experiment {
   // Unknown sidecar keys, kept so a rewrite loses nothing. Mirrors the sidecar: top-level
   // unknown keys at the top, unknown keys inside `plant`, `signals` or `controller` under an
   // object of that name. It never holds a key the format defines.
-  nlohmann::json extra;
+  JsonValue extra;
 
   Eigen::Index samples() const { return t.size(); }
   bool has_excitation() const { return !r_names.empty(); }

@@ -8,8 +8,9 @@
 #include <string>
 #include <string_view>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
+#include "core/json_value.hpp"
 #include "core/state_space.hpp"
 
 namespace ambid {
@@ -28,7 +29,7 @@ struct Model {
   std::map<std::string, double> fit_nrmse;    // per output, on data the fit did not see
   // Unknown keys, mirroring the file: top-level ones at the top, unknown keys inside
   // `discrete`, `continuous` or `fit` under an object of that name. Never a defined key.
-  nlohmann::json extra = nlohmann::json::object();
+  JsonValue extra = JsonValue::object();
 
   // Throws Error naming the first violation: empty plant_model or method, sample_time not
   // positive and finite (or different from discrete.sample_time), inconsistent or non-finite

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/experiment.hpp"
 #include "diagnostics/audit/audit_amplitude.hpp"
@@ -39,7 +39,7 @@
 #include "diagnostics/audit/audit_spectrum.hpp"
 #include "plant_sim/effects.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct AuditOptions {
   double estimation_fraction = 0.5;
@@ -94,4 +94,4 @@ nlohmann::json audit_json(const AuditResult& result, const std::string& experime
 // The extended model: nominal parameters plus the accepted effect(s) and their fit.
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& result);
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

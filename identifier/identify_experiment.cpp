@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "identifier/families/amb1dof_deadbeat.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
@@ -55,7 +57,7 @@ void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realizatio
     model.parameters[amb1dof_structure_names()[std::size_t(i)]] = v(i);
     model.physical[amb1dof_physical_names()[std::size_t(i)]] = v(i) * scale(i);
   }
-  model.extra["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
+  model.extra.json()["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
 }
 
 void require_amb1dof(const Experiment& e, const IdentifyOptions& o) {
@@ -81,7 +83,7 @@ void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
   model.physical = id.physical;
   for (const auto& [k, v] : id.parameter_uncertainty) model.uncertainty[k] = v;
   for (const auto& [k, v] : id.physical_uncertainty) model.uncertainty[k] = v;
-  model.extra["structure_deviation"] = id.structure_deviation;
+  model.extra.json()["structure_deviation"] = id.structure_deviation;
 }
 
 using Breaks = std::vector<Index>;
@@ -135,8 +137,8 @@ DiscreteSystem fit_realization(const Experiment& e, const IdentifyOptions& o, In
 }
 
 void add_warning(Model& model, const std::string& warning) {
-  if (!model.extra.contains("warnings")) model.extra["warnings"] = nlohmann::json::array();
-  model.extra["warnings"].push_back(warning);
+  if (!model.extra.json().contains("warnings")) model.extra.json()["warnings"] = nlohmann::json::array();
+  model.extra.json()["warnings"].push_back(warning);
 }
 
 Eigen::Matrix<double, 9, 1> structure_vector(const std::map<std::string, double>& parameters) {
@@ -195,15 +197,15 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
     model.uncertainty[v] = sigma;
     model.uncertainty[q] = sigma * scale(i);
   }
-  model.extra["structure_deviation"] = 0.0;  // the structure of eq. (4) by construction
+  model.extra.json()["structure_deviation"] = 0.0;  // the structure of eq. (4) by construction
   if (!fit.converged)
     add_warning(model, "pem: the solver stopped at its iteration limit before converging (" +
                            std::to_string(fit.iterations) + " iterations)");
-  model.extra["pem"] = {{"start", start_names[std::size_t(fit.start_index)]},
-                        {"iterations", fit.iterations},
-                        {"condition_number", fit.condition_number},
-                        {"offset", {fit.offset(0), fit.offset(1), fit.offset(2)}},
-                        {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
+  model.extra.json()["pem"] = {{"start", start_names[std::size_t(fit.start_index)]},
+                               {"iterations", fit.iterations},
+                               {"condition_number", fit.condition_number},
+                               {"offset", {fit.offset(0), fit.offset(1), fit.offset(2)}},
+                               {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
 }
 
 // Segment jackknife of the parameters and physical quantities of an ARX/ERA method.
@@ -224,7 +226,7 @@ void add_jackknife_uncertainty(const Experiment& e, const IdentifyOptions& o, In
     return;
   }
   model.uncertainty = jackknife_sigma(estimates);
-  model.extra["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
+  model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
 }
 
 void validate_on(const Experiment& validation, Model& model) {
@@ -310,7 +312,7 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
     }
   }
   model.discrete.sample_time = e.sample_time;
-  model.extra["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
+  model.extra.json()["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
   if (validation >= 2) validate_on(experiment_segment(e, e.samples() - validation, e.samples()), model);
   model.validate();
   return model;

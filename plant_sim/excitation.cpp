@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
 #include <unsupported/Eigen/FFT>
 
 #include "core/error.hpp"
@@ -128,15 +129,15 @@ Excitation prbs(const PrbsOptions& o, Eigen::Index samples, double sample_time) 
     }
   }
   const auto period_samples = static_cast<Eigen::Index>(period) * o.clock_divider;
-  out.description = common("prbs", samples, o.channels, sample_time);
-  out.description.update({{"amplitude", o.amplitude},
-                          {"register_length", o.register_length},
-                          {"clock_divider", o.clock_divider},
-                          {"period_samples", period_samples},
-                          {"periods", static_cast<double>(samples) / static_cast<double>(period_samples)},
-                          {"channel_pattern", "shifted"},
-                          {"channel_shifts", shifts},
-                          {"seed", o.seed}});
+  out.description.json() = common("prbs", samples, o.channels, sample_time);
+  out.description.json().update({{"amplitude", o.amplitude},
+                                 {"register_length", o.register_length},
+                                 {"clock_divider", o.clock_divider},
+                                 {"period_samples", period_samples},
+                                 {"periods", static_cast<double>(samples) / static_cast<double>(period_samples)},
+                                 {"channel_pattern", "shifted"},
+                                 {"channel_shifts", shifts},
+                                 {"seed", o.seed}});
   return out;
 }
 
@@ -162,13 +163,13 @@ Excitation random_signal(const RandomOptions& o, Eigen::Index samples, double sa
       out.samples(k, j) = value;
     }
   }
-  out.description = common(o.kind == NoiseKind::binary ? "random_binary" : "gaussian", samples,
-                           o.channels, sample_time);
-  out.description.update({{"amplitude", o.amplitude},
-                          {"clock_divider", o.clock_divider},
-                          {"channel_pattern", "independent"},
-                          {"channel_seeds", seeds},
-                          {"seed", o.seed}});
+  out.description.json() = common(o.kind == NoiseKind::binary ? "random_binary" : "gaussian", samples,
+                                 o.channels, sample_time);
+  out.description.json().update({{"amplitude", o.amplitude},
+                                 {"clock_divider", o.clock_divider},
+                                 {"channel_pattern", "independent"},
+                                 {"channel_seeds", seeds},
+                                 {"seed", o.seed}});
   return out;
 }
 
@@ -265,8 +266,8 @@ Excitation multisine(const MultisineOptions& o, double T) {
     for (int j = 0; j < o.channels; ++j)
       out.samples.block(p * N, j, N, 1) = H(j, p % H.cols()) * period;
 
-  out.description = common("multisine", N * o.periods, o.channels, T);
-  out.description.update(
+  out.description.json() = common("multisine", N * o.periods, o.channels, T);
+  out.description.json().update(
       {{"normalisation", o.normalisation == Normalisation::rms ? "rms" : "peak"},
        {"level", o.level},
        {"rms", std::sqrt(period.squaredNorm() / static_cast<double>(N))},
@@ -287,7 +288,7 @@ Excitation multisine(const MultisineOptions& o, double T) {
       for (Eigen::Index c = 0; c < full.cols(); ++c) row.push_back(static_cast<int>(full(r, c)));
       rows.push_back(row);
     }
-    out.description["hadamard"] = rows;
+    out.description.json()["hadamard"] = rows;
   }
   return out;
 }
@@ -319,13 +320,13 @@ Excitation chirp(const ChirpOptions& o, Eigen::Index samples, double T) {
                              : kTwoPi * o.f_start / rate * std::expm1(rate * t);
     out.samples.row(n).setConstant(o.amplitude * std::sin(phase));
   }
-  out.description = common("chirp", samples, o.channels, T);
-  out.description.update({{"sweep", o.sweep == Sweep::linear ? "linear" : "logarithmic"},
-                          {"amplitude", o.amplitude},
-                          {"f_start", o.f_start},
-                          {"f_end", o.f_end},
-                          {"duration", D},
-                          {"channel_pattern", "identical"}});
+  out.description.json() = common("chirp", samples, o.channels, T);
+  out.description.json().update({{"sweep", o.sweep == Sweep::linear ? "linear" : "logarithmic"},
+                                 {"amplitude", o.amplitude},
+                                 {"f_start", o.f_start},
+                                 {"f_end", o.f_end},
+                                 {"duration", D},
+                                 {"channel_pattern", "identical"}});
   return out;
 }
 
@@ -367,12 +368,12 @@ Excitation stepped_sine(const SteppedSineOptions& o, double T) {
                      {"measure_samples", M}});
     start += settle + M;
   }
-  out.description = common("stepped_sine", total, o.channels, T);
-  out.description.update({{"amplitude", o.amplitude},
-                          {"settle_time", o.settle_time},
-                          {"measure_periods", o.measure_periods},
-                          {"steps", steps},
-                          {"channel_pattern", "identical"}});
+  out.description.json() = common("stepped_sine", total, o.channels, T);
+  out.description.json().update({{"amplitude", o.amplitude},
+                                 {"settle_time", o.settle_time},
+                                 {"measure_periods", o.measure_periods},
+                                 {"steps", steps},
+                                 {"channel_pattern", "identical"}});
   return out;
 }
 

@@ -13,13 +13,14 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
+
+#include "core/json_value.hpp"
 
 namespace ambid::sim {
 
 struct Excitation {
   Eigen::MatrixXd samples;        // samples x channels
-  nlohmann::json description;
+  JsonValue description;
 };
 
 // Maximal-length PRBS from a Fibonacci LFSR with a primitive feedback polynomial, register

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
@@ -145,7 +147,7 @@ Scenario build_scenario(const ScenarioOptions& o) {
     h.operating_point["r2"] = 0.0;
     Excitation e = make_excitation(o, samples, 2);
     s.options.excitation = std::move(e.samples);
-    h.extra["excitation"] = std::move(e.description);
+    h.extra.json()["excitation"] = std::move(e.description.json());
   }
   if (o.position_noise > 0 || o.current_noise > 0)
     s.options.measurement_noise_std = Eigen::Vector3d(o.position_noise, o.current_noise, o.current_noise);
@@ -157,7 +159,7 @@ Scenario build_scenario(const ScenarioOptions& o) {
   }
   // What the simulator knew and the sidecar's nominal view does not: kept under its own key so
   // tests and users can compare an identification with the truth.
-  h.extra["simulation"] = std::move(simulation);
+  h.extra.json()["simulation"] = std::move(simulation);
   return s;
 }
 

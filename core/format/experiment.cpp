@@ -6,6 +6,8 @@
 #include <string>
 #include <tuple>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/format/experiment_sidecar.hpp"
 #include "core/format/experiment_text.hpp"
@@ -225,7 +227,7 @@ void Experiment::validate_metadata() const {
       throw Error("controller.sample_time " + number_text(controller->sample_time) +
                   " must equal sample_time " + number_text(sample_time) + " (within 1e-9 relative)");
   }
-  validate_extra(extra, controller.has_value());
+  validate_extra(extra.json(), controller.has_value());
 }
 
 void Experiment::validate() const {

@@ -2,6 +2,8 @@
 
 #include <system_error>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/format/experiment_csv.hpp"
 #include "core/experiment_file.hpp"

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "core/format/experiment_text.hpp"
@@ -94,7 +96,7 @@ json parse_sidecar_text(const std::string& text) {
 Experiment parse_sidecar(const json& sidecar, std::vector<std::string>& warnings) {
   if (!sidecar.is_object()) wrong_type(sidecar, "(root)", "an object");
   Experiment e;
-  e.extra = json::object();
+  e.extra = JsonValue::object();
   const std::string format = as_string(require_key(sidecar, "", "format", "\"ambid-experiment/1\""), "format");
   if (format != kExperimentFormat)
     throw Error("key `format` must be \"" + std::string(kExperimentFormat) + "\", got " + quote_excerpt(format));
@@ -122,14 +124,14 @@ Experiment parse_sidecar(const json& sidecar, std::vector<std::string>& warnings
   }
 
   if (const auto it = sidecar.find("controller"); it != sidecar.end())
-    e.controller = parse_controller(*it, e.extra);
+    e.controller = parse_controller(*it, e.extra.json());
 
-  keep_unknown(sidecar, defined_sidecar_keys().at(""), e.extra);
+  keep_unknown(sidecar, defined_sidecar_keys().at(""), e.extra.json());
   json plant_extra = json::object(), signals_extra = json::object();
   keep_unknown(plant, defined_sidecar_keys().at("plant"), plant_extra);
   keep_unknown(signals, defined_sidecar_keys().at("signals"), signals_extra);
-  if (!plant_extra.empty()) e.extra["plant"] = plant_extra;
-  if (!signals_extra.empty()) e.extra["signals"] = signals_extra;
+  if (!plant_extra.empty()) e.extra.json()["plant"] = plant_extra;
+  if (!signals_extra.empty()) e.extra.json()["signals"] = signals_extra;
 
   e.validate_metadata();
   return e;
@@ -155,7 +157,7 @@ json sidecar_json(const Experiment& e) {
       c["initial_state"] = std::vector<double>(k.initial_state.data(), k.initial_state.data() + k.initial_state.size());
   }
   // validate_metadata() guaranteed extra never collides with a defined key.
-  merge_unknown(j, e.extra);
+  merge_unknown(j, e.extra.json());
   return j;
 }
 

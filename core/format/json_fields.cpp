@@ -1,5 +1,7 @@
 #include "core/format/json_fields.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/format/experiment_text.hpp"
 

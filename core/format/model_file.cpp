@@ -4,6 +4,8 @@
 #include <set>
 #include <system_error>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/experiment_file.hpp"
 #include "core/format/experiment_sidecar.hpp"
@@ -96,8 +98,8 @@ void Model::validate() const {
       throw Error("key `uncertainty." + key + "` names no entry of `parameters` or `physical`");
     if (sigma < 0.0) throw Error("key `uncertainty." + key + "` must be >= 0 (one sigma), got " + number_text(sigma));
   }
-  if (!extra.is_object()) throw Error("the unknown keys of a model must form an object");
-  for (const auto& [key, value] : extra.items()) {
+  if (!extra.json().is_object()) throw Error("the unknown keys of a model must form an object");
+  for (const auto& [key, value] : extra.json().items()) {
     const auto nested = kNestedKeys.find(key);
     if (nested == kNestedKeys.end()) {
       if (kTopKeys.count(key)) throw Error("the unknown keys of a model hold the defined key `" + key + "`");
@@ -125,7 +127,7 @@ json model_json(const Model& m) {
   j["physical"] = m.physical;
   j["uncertainty"] = m.uncertainty;
   j["fit"] = {{"nrmse", m.fit_nrmse}};
-  merge_unknown(j, m.extra);
+  merge_unknown(j, m.extra.json());
   return j;
 }
 
@@ -139,19 +141,19 @@ Model parse_model(const json& j) {
   m.method = as_string(require_key(j, "", "method", "an identification method name"), "method");
   m.sample_time = as_number(require_key(j, "", "sample_time", "a number of seconds"), "sample_time");
   m.discrete = parse_system<DiscreteSystem>(require_key(j, "", "discrete", "an object with A, B, C, D"), "discrete",
-                                            m.extra);
+                                            m.extra.json());
   m.discrete.sample_time = m.sample_time;
   if (const auto it = j.find("continuous"); it != j.end())
-    m.continuous = parse_system<ContinuousSystem>(*it, "continuous", m.extra);
+    m.continuous = parse_system<ContinuousSystem>(*it, "continuous", m.extra.json());
   if (const auto it = j.find("parameters"); it != j.end()) m.parameters = parse_numbers(*it, "parameters");
   if (const auto it = j.find("physical"); it != j.end()) m.physical = parse_numbers(*it, "physical");
   if (const auto it = j.find("uncertainty"); it != j.end()) m.uncertainty = parse_numbers(*it, "uncertainty");
   if (const auto it = j.find("fit"); it != j.end()) {
     const json& fit = as_object(*it, "fit");
     if (const auto n = fit.find("nrmse"); n != fit.end()) m.fit_nrmse = parse_numbers(*n, "fit.nrmse");
-    keep_nested_unknown(fit, "fit", m.extra);
+    keep_nested_unknown(fit, "fit", m.extra.json());
   }
-  keep_unknown(j, kTopKeys, m.extra);
+  keep_unknown(j, kTopKeys, m.extra.json());
   m.validate();
   return m;
 }

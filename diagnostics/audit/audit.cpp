@@ -5,9 +5,11 @@
 #include <complex>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 struct Candidate {
@@ -273,4 +275,4 @@ nlohmann::json extended_model_json(const Experiment& measured, const AuditResult
           {"fit", {{"segment", "validation"}, {"nrmse", per_output}}}};
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "identifier/frf_welch.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 // Median and its standard error: 1.2533 sd / sqrt(n / 2), the large-sample value for a normal
@@ -92,4 +92,4 @@ AmplitudeDependence amplitude_dependence(const Experiment& measured, const Repla
   return out;
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

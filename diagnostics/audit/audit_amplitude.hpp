@@ -22,7 +22,7 @@
 #include "core/experiment.hpp"
 #include "diagnostics/audit/audit_replay.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct AmplitudePart {
   Segment samples;
@@ -57,4 +57,4 @@ struct AmplitudeOptions {
 AmplitudeDependence amplitude_dependence(const Experiment& measured, const ReplayedLoop& nominal,
                                          const AmplitudeOptions& options = {});
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

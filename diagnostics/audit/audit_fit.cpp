@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 // Lags and delays are fitted no closer to zero than this fraction of their scale: a lag much
@@ -97,4 +97,4 @@ EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured
   return fit;
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

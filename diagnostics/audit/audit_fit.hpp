@@ -6,7 +6,7 @@
 #include "diagnostics/audit/audit_replay.hpp"
 #include "plant_sim/effects.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct FitOptions {
   int max_iterations = 12;
@@ -29,4 +29,4 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
                      const Segment& estimation, const FitOptions& options = {});
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -5,7 +5,7 @@
 #include "core/error.hpp"
 #include "identifier/frf_welch.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 ident::Frf keep_lines(const ident::Frf& frf, const std::vector<Eigen::Index>& lines) {
@@ -72,4 +72,4 @@ std::vector<Eigen::Index> determined_lines(const AuditFrfs& frfs, Eigen::Index i
   return lines;
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -9,7 +9,7 @@
 #include "diagnostics/audit/audit_replay.hpp"
 #include "identifier/frf_types.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct AuditFrfs {
   ident::Frf measured, nominal, extended;    // plant G on the excited band
@@ -30,4 +30,4 @@ AuditFrfs audit_frfs(const Experiment& measured, const ReplayedLoop& nominal, co
 std::vector<Eigen::Index> determined_lines(const AuditFrfs& frfs, Eigen::Index i, Eigen::Index j,
                                            double max_relative_variance = 0.01);
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -4,7 +4,7 @@
 #include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/closed_loop.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 void require_auditable(const Experiment& measured) {
   if (measured.plant.model != "amb1dof_voltage")
@@ -56,4 +56,4 @@ Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& mo
   return out;
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

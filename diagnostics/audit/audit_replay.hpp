@@ -11,7 +11,7 @@
 #include "core/experiment.hpp"
 #include "plant_sim/effects.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 // Samples [begin, end) of a record.
 struct Segment {
@@ -40,4 +40,4 @@ Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& mo
 // Checks what the audit needs of an experiment (Error naming what is missing).
 void require_auditable(const Experiment& measured);
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

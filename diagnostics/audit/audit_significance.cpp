@@ -6,7 +6,7 @@
 
 #include "core/error.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 double normal_upper_tail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
@@ -76,4 +76,4 @@ double acceptance_threshold(double alpha, int candidates) {
   return 0.5 * (lo + hi);
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -19,7 +19,7 @@
 
 #include "diagnostics/audit/audit_replay.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct ImprovementTest {
   double reduction = 0.0;  // S0 - S1 (sum over outputs of NRMSE^2 before minus after)
@@ -38,4 +38,4 @@ ImprovementTest improvement_test(const Eigen::MatrixXd& measured, const Eigen::M
 // outside (0, 1) or candidates < 1.
 double acceptance_threshold(double alpha, int candidates);
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

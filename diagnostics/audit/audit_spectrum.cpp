@@ -7,7 +7,7 @@
 
 #include "core/error.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
@@ -99,4 +99,4 @@ double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::Vect
   return best;
 }
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -6,7 +6,7 @@
 
 #include <Eigen/Core>
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 
 struct Spectrum {
   Eigen::VectorXd frequency;  // Hz, 0 .. Nyquist
@@ -34,4 +34,4 @@ std::vector<double> spectral_peaks(const Eigen::VectorXd& signal, double sample_
 double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation,
                               Eigen::Index max_lag);
 
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

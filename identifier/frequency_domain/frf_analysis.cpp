@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "identifier/frequency_domain/frf_periodic.hpp"
 #include "identifier/frequency_domain/frf_stepped_sine.hpp"
@@ -14,9 +16,10 @@ namespace ambid::ident {
 namespace {
 
 const nlohmann::json* excitation_description(const Experiment& e) {
-  if (!e.extra.is_object()) return nullptr;
-  const auto it = e.extra.find("excitation");
-  if (it == e.extra.end() || !it->is_object()) return nullptr;
+  const nlohmann::json& extra = e.extra.json();
+  if (!extra.is_object()) return nullptr;
+  const auto it = extra.find("excitation");
+  if (it == extra.end() || !it->is_object()) return nullptr;
   return &*it;
 }
 

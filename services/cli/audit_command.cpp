@@ -5,6 +5,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "core/experiment_io.hpp"
 #include "diagnostics/audit.hpp"
 #include "services/cli/audit_report.hpp"

@@ -5,6 +5,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "identifier/frf_analysis.hpp"

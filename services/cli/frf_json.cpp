@@ -3,6 +3,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "services/cli/frf_output.hpp"
 
 namespace ambid::cli {

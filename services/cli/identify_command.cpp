@@ -2,6 +2,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
 #include "identifier/identify_experiment.hpp"
@@ -24,8 +26,8 @@ void print_summary(const Model& m, const std::string& out) {
     std::cout << "\n";
   }
   for (const auto& [name, value] : m.fit_nrmse) std::cout << "  validation nrmse " << name << ": " << value << "\n";
-  if (m.extra.contains("warnings"))
-    for (const auto& w : m.extra["warnings"]) std::cerr << "ambid identify: warning: " << w.get<std::string>() << "\n";
+  if (m.extra.json().contains("warnings"))
+    for (const auto& w : m.extra.json()["warnings"]) std::cerr << "ambid identify: warning: " << w.get<std::string>() << "\n";
   std::cout << "  wrote " << out << "\n";
 }
 

@@ -1,11 +1,12 @@
 #pragma once
 // What every daemon and every operator command that talks to the bus takes on its command line:
 // --dds fastdds|cyclone, --domain N, --profile loopback|FILE, --plant-id ID, --config FILE (JSON).
+#include <initializer_list>
 #include <memory>
 #include <string>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "services/bus/bus.hpp"
 

@@ -4,6 +4,8 @@
 #include <map>
 #include <optional>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
 #include "services/daemons/alert_message.hpp"

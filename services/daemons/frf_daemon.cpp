@@ -4,6 +4,8 @@
 #include <optional>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/frf_message.hpp"

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/plant_source.hpp"

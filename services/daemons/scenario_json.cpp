@@ -1,5 +1,7 @@
 #include "services/daemons/scenario_json.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "services/daemons/daemon_options.hpp"
 

@@ -9,7 +9,7 @@
 // Unknown keys are refused (a misspelt "true_parameters" must not give a healthy plant).
 #include <string>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "plant_sim/scenario.hpp"
 

@@ -2,6 +2,7 @@
 // checking that the message names the file, the line or key, and what was expected.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -558,9 +559,9 @@ TEST_F(ReadExperiment, UnknownKeysAreKeptAndWrittenBack) {
                          {"plant", {{"serial", "SN-42"}}},
                          {"signals", {{"units", {{"x", "m"}}}}},
                          {"controller", {{"design", "lqr"}}}};
-  EXPECT_EQ(first.experiment.extra, expected);
+  EXPECT_EQ(first.experiment.extra.json(), expected);
   write_experiment(first.experiment, dir_ / "copy");
-  EXPECT_EQ(read_experiment(dir_ / "copy").experiment.extra, expected);
+  EXPECT_EQ(read_experiment(dir_ / "copy").experiment.extra.json(), expected);
   std::ifstream copy(dir_ / "copy.json");
   EXPECT_EQ(json::parse(copy), sidecar);
 }

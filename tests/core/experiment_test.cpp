@@ -1,6 +1,7 @@
 // The Experiment type, its validation, and write/read round trips.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -70,10 +71,10 @@ Experiment example_experiment() {
   fill(e.y, 3, 1e-5);
   fill(e.u, 2, 8.0);
   fill(e.r, 2, 0.3);
-  e.extra = {{"rig", {{"id", "A"}, {"temperatures", {20.5, 21}}}},
-             {"plant", {{"serial", 7}}},
-             {"signals", {{"units", {{"x", "m"}}}}},
-             {"controller", {{"design", "lqr"}}}};
+  e.extra.json() = {{"rig", {{"id", "A"}, {"temperatures", {20.5, 21}}}},
+                    {"plant", {{"serial", 7}}},
+                    {"signals", {{"units", {{"x", "m"}}}}},
+                    {"controller", {{"design", "lqr"}}}};
   return e;
 }
 
@@ -105,7 +106,7 @@ void expect_identical(const Experiment& a, const Experiment& b) {
   if (a.r.cols() > 0) {
     EXPECT_EQ(a.r, b.r);
   }
-  EXPECT_EQ(a.extra, b.extra);
+  EXPECT_EQ(a.extra.json(), b.extra.json());
   ASSERT_EQ(a.controller.has_value(), b.controller.has_value());
   if (!a.controller) return;
   const StateSpaceController &ca = *a.controller, &cb = *b.controller;
@@ -184,9 +185,9 @@ TEST(Experiment, ValidateRefusesNonPositiveSampleTime) {
 
 TEST(Experiment, ValidateRefusesExtraThatShadowsADefinedKey) {
   Experiment e = example_experiment();
-  e.extra["plant"]["model"] = "other";
+  e.extra.json()["plant"]["model"] = "other";
   EXPECT_THAT(error_of([&] { e.validate(); }), HasSubstr("extra.plant holds 'model', a key the format defines"));
-  e.extra = {{"sample_time", 1.0}};
+  e.extra.json() = {{"sample_time", 1.0}};
   EXPECT_THAT(error_of([&] { e.validate(); }), HasSubstr("extra holds 'sample_time'"));
 }
 
@@ -246,14 +247,14 @@ TEST_F(ExperimentFiles, RoundTripWithoutExcitationControllerOrExtra) {
   e.r.resize(0, 0);
   e.operating_point.erase("r1");
   e.controller.reset();
-  e.extra = nullptr;
+  e.extra = JsonValue();
   write_experiment(e, dir_ / "plain");
   const Experiment back = read_experiment(dir_ / "plain.csv").experiment;
   EXPECT_FALSE(back.has_excitation());
   EXPECT_FALSE(back.controller.has_value());
   EXPECT_EQ(back.r.rows(), e.samples());
   EXPECT_EQ(back.r.cols(), 0);
-  e.extra = nlohmann::json::object();  // the reader always gives an object
+  e.extra = JsonValue::object();  // the reader always gives an object
   expect_identical(e, back);
 }
 

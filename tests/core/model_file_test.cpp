@@ -2,6 +2,7 @@
 // test per rule of the strict reader, each checking the message names file, key and expectation.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -114,7 +115,7 @@ TEST_F(ModelFile, UnknownKeysAreKeptThroughARewrite) {
   j["fit"]["segment"] = {0.75, 1.0};
   j["discrete"]["note"] = 3;
   const Model m = read_model(write_text(j.dump()));
-  EXPECT_EQ(m.extra["comment"], "hand edited");
+  EXPECT_EQ(m.extra.json()["comment"], "hand edited");
   const fs::path again = dir_ / "again.json";
   write_model(m, again);
   const json back = json::parse(read_text_file(again));

@@ -1,6 +1,7 @@
 #include "diagnostics/alert.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 

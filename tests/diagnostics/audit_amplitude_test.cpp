@@ -16,7 +16,7 @@
 #include "plant_sim/closed_loop.hpp"
 #include "plant_sim/scenario.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 // 1.2 s, PRBS at `levels` (V) in successive equal parts, sensor noise as the hidden-effect tests.
@@ -121,4 +121,4 @@ TEST(AuditAmplitude, ShortRecordsAreNotDeterminable) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

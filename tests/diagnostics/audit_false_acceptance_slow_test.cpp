@@ -11,7 +11,7 @@
 #include "audit_cases.hpp"
 #include "diagnostics/audit.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 TEST(AuditFalseAcceptance, CleanRecordsRarelyGetACause) {
@@ -43,4 +43,4 @@ TEST(AuditFalseAcceptance, CleanRecordsRarelyGetACause) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -8,7 +8,7 @@
 #include "audit_cases.hpp"
 #include "diagnostics/audit.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 constexpr int kDraws = 3;
@@ -43,4 +43,4 @@ TEST(HiddenEffectSweep, CleanDataHasNoCause) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -10,7 +10,7 @@
 #include "audit_cases.hpp"
 #include "diagnostics/audit.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 class HiddenEffect : public ::testing::TestWithParam<std::string> {};
@@ -45,4 +45,4 @@ TEST(HiddenEffect, CleanDataHasNoCause) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

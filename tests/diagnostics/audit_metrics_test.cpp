@@ -8,13 +8,14 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "audit_cases.hpp"
 #include "core/error.hpp"
 #include "diagnostics/audit.hpp"
 #include "plant_sim/scenario.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 using ::testing::HasSubstr;
@@ -152,4 +153,4 @@ TEST(AuditInput, RefusesWhatItCannotReplay) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

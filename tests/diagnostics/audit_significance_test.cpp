@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_significance.hpp"
 
-namespace ambid::diagnostics {
+namespace ambid::diag {
 namespace {
 
 constexpr Eigen::Index kSamples = 2000;
@@ -80,4 +80,4 @@ TEST(AuditSignificance, ThresholdIsTheBonferroniNormalQuantile) {
 }
 
 }  // namespace
-}  // namespace ambid::diagnostics
+}  // namespace ambid::diag

@@ -1,6 +1,7 @@
 #include "diagnostics/diagnostics_engine.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <optional>

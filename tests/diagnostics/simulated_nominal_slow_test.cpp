@@ -2,6 +2,7 @@
 // (simulated_windows.hpp): the diagnostics raise no WARN and no ERROR. The 150-window version
 // runs in CI (simulated_sequence_test.cpp).
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/simulated_windows.hpp"

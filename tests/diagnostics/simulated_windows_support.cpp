@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/synthetic_estimates.hpp"

@@ -3,6 +3,7 @@
 // exact DFT; truth is the ZOH model of the plant. Also through analyse_frf from an experiment
 // whose sidecar describes the steps, and the refusals.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <complex>
@@ -52,8 +53,8 @@ class SalesSteppedSine : public ::testing::Test {
 };
 
 TEST_F(SalesSteppedSine, EachStepGivesTheOpenLoopPlant) {
-  const SteppedSineFrf e = estimate_stepped_sine_frf(excitation.samples, data.u, data.y, options_from(excitation.description));
-  ASSERT_EQ(e.plant.lines(), static_cast<Eigen::Index>(excitation.description["steps"].size()));
+  const SteppedSineFrf e = estimate_stepped_sine_frf(excitation.samples, data.u, data.y, options_from(excitation.description.json()));
+  ASSERT_EQ(e.plant.lines(), static_cast<Eigen::Index>(excitation.description.json()["steps"].size()));
   double worst = 0.0;
   for (Eigen::Index l = 0; l < e.plant.lines(); ++l) {
     const double f = e.plant.frequency_hz(l);
@@ -82,7 +83,7 @@ TEST_F(SalesSteppedSine, AnalyseFrfUsesTheStepsOfTheDescription) {
   x.y = data.y;
   x.u = data.u;
   x.r = excitation.samples;
-  x.extra = {{"excitation", excitation.description}};
+  x.extra.json() = {{"excitation", excitation.description.json()}};
   FrfAnalysisOptions o;
   o.fit = false;
   const FrfReport report = analyse_frf(x, o);
@@ -95,19 +96,19 @@ TEST_F(SalesSteppedSine, AnalyseFrfUsesTheStepsOfTheDescription) {
 }
 
 TEST_F(SalesSteppedSine, Refusals) {
-  SteppedSineFrfOptions o = options_from(excitation.description);
+  SteppedSineFrfOptions o = options_from(excitation.description.json());
   const Eigen::MatrixXd two(excitation.samples.rows(), 2);
   EXPECT_THROW(estimate_stepped_sine_frf(two, data.u, data.y, o), InsufficientData);
   o.steps.back().measure_start = excitation.samples.rows();
   EXPECT_THROW(estimate_stepped_sine_frf(excitation.samples, data.u, data.y, o), Error);
-  o = options_from(excitation.description);
+  o = options_from(excitation.description.json());
   o.steps[1].cycles = o.steps[1].measure_samples;  // above Nyquist
   EXPECT_THROW(estimate_stepped_sine_frf(excitation.samples, data.u, data.y, o), Error);
-  o = options_from(excitation.description);
+  o = options_from(excitation.description.json());
   o.f_min = 2000.0;
   EXPECT_THROW(estimate_stepped_sine_frf(excitation.samples, data.u, data.y, o), InsufficientData);
   const Eigen::MatrixXd silent = Eigen::MatrixXd::Zero(excitation.samples.rows(), 1);
-  EXPECT_THROW(estimate_stepped_sine_frf(silent, data.u, data.y, options_from(excitation.description)), InsufficientData);
+  EXPECT_THROW(estimate_stepped_sine_frf(silent, data.u, data.y, options_from(excitation.description.json())), InsufficientData);
 }
 
 }  // namespace

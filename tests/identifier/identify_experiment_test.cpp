@@ -8,6 +8,7 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
@@ -113,7 +114,7 @@ TEST(IdentifyExperiment, ControllerProblemsAreNamed) {
   open.controller.reset();
   const Model m = identify_experiment(open, method("okid"));
   EXPECT_TRUE(m.fit_nrmse.empty());
-  EXPECT_THAT(m.extra["warnings"][0].get<std::string>(), HasSubstr("no controller"));
+  EXPECT_THAT(m.extra.json()["warnings"][0].get<std::string>(), HasSubstr("no controller"));
 }
 
 TEST(IdentifyExperiment, SegmentCarriesTheControllerState) {

@@ -41,13 +41,13 @@ TEST(SimEffectCli, EffectsChangeTheTruthNotTheSidecar) {
   ASSERT_EQ(r.status, 0) << r.output;
   const Experiment e = read_experiment(dir / "two").experiment;
   EXPECT_DOUBLE_EQ(e.plant.parameters.at("R1"), 17.5);
-  const auto& effects = e.extra["simulation"]["effects"];
+  const auto& effects = e.extra.json()["simulation"]["effects"];
   ASSERT_EQ(effects.size(), 2u);
   EXPECT_EQ(effects[0]["effect"], "amplifier_bandwidth");
   EXPECT_EQ(effects[0]["channel"], 2);
   EXPECT_DOUBLE_EQ(effects[1]["parameters"]["tau"].get<double>(), 1e-4);
   EXPECT_TRUE(effects[1]["channel"].is_null());
-  EXPECT_DOUBLE_EQ(e.extra["simulation"]["true_parameters"]["R1"].get<double>(), 18.0);
+  EXPECT_DOUBLE_EQ(e.extra.json()["simulation"]["true_parameters"]["R1"].get<double>(), 18.0);
 }
 
 TEST(SimEffectCli, UnknownEffectsAndParametersListTheValidOnes) {

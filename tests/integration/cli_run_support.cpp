@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 namespace ambid::cli_test {
 
 CommandResult run_command(const std::string& command) {

@@ -3,6 +3,7 @@
 // the contract's nominal values), and bad input -> a clear message and exit code 1.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>

@@ -2,6 +2,7 @@
 // options give a clear message and a non-zero exit.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <string>
@@ -43,7 +44,7 @@ TEST(SimCli, SetChangesTheTruthNotTheSidecar) {
   ASSERT_EQ(r.status, 0) << r.output;
   const Experiment e = read_experiment(dir / "hot").experiment;
   EXPECT_DOUBLE_EQ(e.plant.parameters.at("R1"), 17.5);
-  EXPECT_DOUBLE_EQ(e.extra["simulation"]["true_parameters"]["R1"].get<double>(), 21.0);
+  EXPECT_DOUBLE_EQ(e.extra.json()["simulation"]["true_parameters"]["R1"].get<double>(), 21.0);
   // With the hotter coil the controller must command more voltage on coil 1 in steady state.
   EXPECT_GT(e.u.col(0).tail(500).mean(), 8.75 * 1.1);
 }

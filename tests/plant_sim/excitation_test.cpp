@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <complex>
@@ -46,7 +47,7 @@ TEST(Prbs, MaximalPeriodAndBalanceForEveryRegisterLength) {
     }
     // Balance: 2^(n-1) ones, 2^(n-1) - 1 minus ones per period.
     EXPECT_DOUBLE_EQ(s.head(P).sum(), 0.5) << "n = " << n;
-    EXPECT_EQ(e.description["period_samples"], P);
+    EXPECT_EQ(e.description.json()["period_samples"], P);
   }
 }
 
@@ -70,14 +71,14 @@ TEST(Prbs, ClockDividerSeedAndChannels) {
   o.seed = 11;
   const Excitation a = prbs(o, 3000, 1e-4), b = prbs(o, 3000, 1e-4);
   EXPECT_EQ(a.samples, b.samples);  // bit-identical for the same seed
-  EXPECT_EQ(a.description["period_samples"], 511 * 3);
+  EXPECT_EQ(a.description.json()["period_samples"], 511 * 3);
   for (Eigen::Index k = 0; k + 3 <= 3000; k += 3)
     for (int j = 0; j < 3; ++j) {
       EXPECT_EQ(a.samples(k, j), a.samples(k + 1, j));
       EXPECT_EQ(a.samples(k, j), a.samples(k + 2, j));
     }
   // Channels are shifts of one m-sequence spaced by a third of the period.
-  const auto shifts = a.description["channel_shifts"];
+  const auto shifts = a.description.json()["channel_shifts"];
   EXPECT_EQ((shifts[1].get<std::uint64_t>() + 511 - shifts[0].get<std::uint64_t>()) % 511, 170U);
   for (Eigen::Index k = 0; k < 3 * (511 - 170); ++k)
     EXPECT_EQ(a.samples(k, 1), a.samples(k + 3 * 170, 0));
@@ -118,13 +119,13 @@ TEST(Multisine, EnergyExactlyOnTheRequestedLinesAndRmsNormalised) {
   const Eigen::VectorXd first = e.samples.col(0).head(1000);
   EXPECT_EQ((first - e.samples.col(0).tail(1000)).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_NEAR(std::sqrt(first.squaredNorm() / 1000), 0.3, 1e-12);
-  EXPECT_NEAR(e.description["rms"].get<double>(), 0.3, 1e-12);
+  EXPECT_NEAR(e.description.json()["rms"].get<double>(), 0.3, 1e-12);
 
   std::set<Eigen::Index> expected;
   for (Eigen::Index k = 10; k <= 30; ++k) expected.insert(k);
-  const auto lines = e.description["lines"].get<std::vector<Eigen::Index>>();
+  const auto lines = e.description.json()["lines"].get<std::vector<Eigen::Index>>();
   EXPECT_EQ(std::set<Eigen::Index>(lines.begin(), lines.end()), expected);
-  EXPECT_DOUBLE_EQ(e.description["frequencies"][0].get<double>(), 100.0);
+  EXPECT_DOUBLE_EQ(e.description.json()["frequencies"][0].get<double>(), 100.0);
 
   const auto X = dft(first);
   const double flat = 0.3 / std::sqrt(21 / 2.0);  // equal amplitude on 21 lines
@@ -150,8 +151,8 @@ TEST(Multisine, GivenSpectrumPeakNormalisationAndSeeds) {
   const Excitation a = multisine(o, T);
   EXPECT_NEAR(a.samples.cwiseAbs().maxCoeff(), 1.5, 1e-12);
   const auto X = dft(a.samples.col(0));
-  const auto lines = a.description["lines"].get<std::vector<Eigen::Index>>();
-  const auto amplitudes = a.description["line_amplitudes"].get<std::vector<double>>();
+  const auto lines = a.description.json()["lines"].get<std::vector<Eigen::Index>>();
+  const auto amplitudes = a.description.json()["line_amplitudes"].get<std::vector<double>>();
   const double line_spacing = 1.0 / (512 * T);
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const double f = static_cast<double>(lines[i]) * line_spacing;
@@ -187,7 +188,7 @@ TEST(Multisine, HadamardPatternSeparatesChannels) {
       for (int p = 0; p < 4; ++p) combined += H(i, p) * e.samples.block(200 * p, j, 200, 1);
       EXPECT_NEAR((combined - (i == j ? 4.0 : 0.0) * s).norm(), 0.0, 1e-12) << i << " " << j;
     }
-  EXPECT_EQ(e.description["channel_pattern"], "hadamard");
+  EXPECT_EQ(e.description.json()["channel_pattern"], "hadamard");
   o.periods = 6;
   EXPECT_THROW(multisine(o, T), Error);
 }
@@ -241,7 +242,7 @@ TEST(SteppedSine, WholePeriodsAtSnappedFrequencies) {
   o.amplitude = 0.2;
   const double T = 1e-4;
   const Excitation e = stepped_sine(o, T);
-  const auto& steps = e.description["steps"];
+  const auto& steps = e.description.json()["steps"];
   ASSERT_EQ(steps.size(), 3U);
   Eigen::Index total = 0;
   for (std::size_t i = 0; i < 3; ++i) {

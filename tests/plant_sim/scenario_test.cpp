@@ -2,6 +2,7 @@
 // (nonlinear) bearing stable when a coil resistance or an amplifier gain is 20 % off.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
@@ -72,9 +73,9 @@ TEST(Scenario, SidecarKeepsNominalParametersAndRecordsTruth) {
   o.true_parameters["R1"] = 21.0;
   const Scenario s = build_scenario(o);
   EXPECT_DOUBLE_EQ(s.header.plant.parameters.at("R1"), 17.5);
-  EXPECT_DOUBLE_EQ(s.header.extra["simulation"]["true_parameters"]["R1"].get<double>(), 21.0);
+  EXPECT_DOUBLE_EQ(s.header.extra.json()["simulation"]["true_parameters"]["R1"].get<double>(), 21.0);
   EXPECT_DOUBLE_EQ(s.header.operating_point.at("u1"), 8.75);
-  EXPECT_EQ(s.header.extra["excitation"]["kind"], "prbs");
+  EXPECT_EQ(s.header.extra.json()["excitation"]["kind"], "prbs");
 }
 
 TEST(Scenario, BadOptionsAreNamed) {
