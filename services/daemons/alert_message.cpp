@@ -1,5 +1,6 @@
 #include "services/daemons/alert_message.hpp"
 
+#include <algorithm>
 #include <array>
 
 namespace ambid::daemons {
