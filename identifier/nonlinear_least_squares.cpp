@@ -33,7 +33,7 @@ struct ResidualsOnly {
   }
 };
 
-std::unique_ptr<ceres::CostFunction> cost_function(const LeastSquaresProblem& p, int parameters) {
+std::unique_ptr<ceres::CostFunction> cost_function(const NonlinearLeastSquares& p, int parameters) {
   if (p.differentiation == Differentiation::provided)
     return std::make_unique<ProvidedJacobian>(p.residuals, p.residual_count, parameters);
   auto cost = std::make_unique<ceres::DynamicNumericDiffCostFunction<ResidualsOnly, ceres::CENTRAL>>(
@@ -59,8 +59,8 @@ Termination termination(ceres::TerminationType type) {
 
 }  // namespace
 
-LeastSquaresSolution solve_least_squares(const LeastSquaresProblem& p, const Eigen::VectorXd& start,
-                                         const LeastSquaresOptions& o) {
+NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& p, const Eigen::VectorXd& start,
+                                         const NonlinearLeastSquaresOptions& o) {
   const auto n = static_cast<int>(start.size());
   if (!p.residuals || p.residual_count < 1 || n < 1)
     throw Error("least squares: needs a residual function, residuals and parameters, got " +
@@ -69,7 +69,7 @@ LeastSquaresSolution solve_least_squares(const LeastSquaresProblem& p, const Eig
     throw Error("least squares: bounds of " + std::to_string(p.lower.size()) + " and " +
                 std::to_string(p.upper.size()) + " values for " + std::to_string(n) + " parameters");
 
-  LeastSquaresSolution out;
+  NonlinearLeastSquaresSolution out;
   out.x = start;
   const std::unique_ptr<ceres::CostFunction> cost = cost_function(p, n);
   ceres::Problem::Options po;

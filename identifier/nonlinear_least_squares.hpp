@@ -20,7 +20,7 @@ enum class Differentiation {
   central,   // Ceres' central differences of the residuals (relative step 1e-6); `jacobian` is always null
 };
 
-struct LeastSquaresProblem {
+struct NonlinearLeastSquares {
   ResidualFunction residuals;
   int residual_count = 0;
   Differentiation differentiation = Differentiation::provided;
@@ -28,7 +28,7 @@ struct LeastSquaresProblem {
 };
 
 // The defaults are Ceres'.
-struct LeastSquaresOptions {
+struct NonlinearLeastSquaresOptions {
   int max_iterations = 50;
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
@@ -43,7 +43,7 @@ enum class Termination {
   failure,          // the solver failed: the solution is not usable
 };
 
-struct LeastSquaresSolution {
+struct NonlinearLeastSquaresSolution {
   Eigen::VectorXd x;
   Termination termination = Termination::failure;
   std::string message;  // the solver's
@@ -58,7 +58,7 @@ struct LeastSquaresSolution {
 };
 
 // From `start` (clamped into the bounds by the caller). Throws Error for sizes that do not agree.
-LeastSquaresSolution solve_least_squares(const LeastSquaresProblem& problem, const Eigen::VectorXd& start,
-                                         const LeastSquaresOptions& options = {});
+NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& problem, const Eigen::VectorXd& start,
+                                         const NonlinearLeastSquaresOptions& options = {});
 
 }  // namespace ambid::ident

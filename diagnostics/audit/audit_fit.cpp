@@ -64,7 +64,7 @@ EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured
       nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();
   const int k = int(spec.parameters.size());
   Eigen::VectorXd theta(k);
-  ident::LeastSquaresProblem problem;
+  ident::NonlinearLeastSquares problem;
   problem.residuals = [&residuals](const double* x, double* r, double*) { return residuals(x, r); };
   problem.residual_count = int(estimation.size() * measured_y.cols());
   problem.differentiation = ident::Differentiation::central;
@@ -78,9 +78,9 @@ EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured
     problem.upper(i) = p.upper / p.scale;
     theta(i) = std::clamp(start.at(p.name) / p.scale, lower, p.upper / p.scale);
   }
-  ident::LeastSquaresOptions solver;
+  ident::NonlinearLeastSquaresOptions solver;
   solver.max_iterations = options.max_iterations;
-  const ident::LeastSquaresSolution solution = ident::solve_least_squares(problem, theta, solver);
+  const ident::NonlinearLeastSquaresSolution solution = ident::solve_nonlinear_least_squares(problem, theta, solver);
 
   EffectFit fit;
   fit.effect = residuals.at(solution.x.data());

@@ -164,21 +164,21 @@ std::vector<double> residuals_at(const Record& record, const Parameters& p) {
 }
 
 // Refines p in place; with `jacobian`, the solution carries the residuals and Jacobian at p.
-LeastSquaresSolution solve(const Record& record, Parameters& p, int max_iterations, bool jacobian = false) {
+NonlinearLeastSquaresSolution solve(const Record& record, Parameters& p, int max_iterations, bool jacobian = false) {
   const PredictionResidual f(record);
-  LeastSquaresProblem problem;
+  NonlinearLeastSquares problem;
   problem.residual_count = residual_count(record);
   problem.residuals = [&f, count = problem.residual_count](const double* x, double* r, double* J) {
     return prediction_residuals(f, count, x, r, J);
   };
-  LeastSquaresOptions o;
+  NonlinearLeastSquaresOptions o;
   o.max_iterations = max_iterations;
   // The parameters are scaled to order one; changes below 1e-8 are far below any sigma.
   o.function_tolerance = 1e-10;
   o.parameter_tolerance = 1e-8;
   o.gradient_tolerance = 1e-12;
   o.jacobian = jacobian;
-  LeastSquaresSolution solution = solve_least_squares(problem, p, o);
+  NonlinearLeastSquaresSolution solution = solve_nonlinear_least_squares(problem, p, o);
   if (!solution.usable()) throw InsufficientData(kWho + ": the solver failed (" + solution.message + ")");
   p = solution.x;
   return solution;
@@ -228,11 +228,11 @@ struct Curvature {
   double condition_number = 0.0;
 };
 
-Curvature curvature(const LeastSquaresSolution& solution, Index samples, const Amb1dofPredictionErrorOptions& options) {
+Curvature curvature(const NonlinearLeastSquaresSolution& fit, Index samples, const Amb1dofPredictionErrorOptions& options) {
   constexpr Index n = kParameters;
-  if (!solution.evaluated) throw InsufficientData(kWho + ": the predictor diverges at the solution");
-  const Eigen::MatrixXd& J = solution.jacobian;
-  const Eigen::VectorXd& e = solution.residuals;
+  if (!fit.evaluated) throw InsufficientData(kWho + ": the predictor diverges at the solution");
+  const Eigen::MatrixXd& J = fit.jacobian;
+  const Eigen::VectorXd& e = fit.residuals;
   std::vector<std::string> names = amb1dof_structure_names();
   for (const char* name : {"w_x''", "w_i1'", "w_i2'", "x0_x", "x0_x'", "x0_i1", "x0_i2"}) names.emplace_back(name);
   for (int i = 0; i < kGains; ++i) names.push_back("K" + std::to_string(i / 3 + 1) + std::to_string(i % 3 + 1));
@@ -341,7 +341,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
       record.weight(j) = 1.0 / unweighted;
     }
   }
-  const LeastSquaresSolution solution = solve(record, p, options.max_iterations, true);
+  const NonlinearLeastSquaresSolution solution = solve(record, p, options.max_iterations, true);
   fit.iterations += solution.iterations;
   fit.converged = solution.termination == Termination::converged;
   fit.start_cost = solution.initial_cost;

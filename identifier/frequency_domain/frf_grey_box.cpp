@@ -113,17 +113,17 @@ GreyBoxFit fit_grey_box(const Frf& frf, const std::function<ContinuousSystem(con
     res.weight.push_back(w);
   }
 
-  LeastSquaresProblem problem;
+  NonlinearLeastSquares problem;
   problem.residuals = GreyBoxCost(res);
   problem.residual_count = res.count();
-  LeastSquaresOptions so;
+  NonlinearLeastSquaresOptions so;
   so.max_iterations = o.max_iterations;
   so.function_tolerance = 1e-14;
   so.gradient_tolerance = 1e-14;
   so.parameter_tolerance = 1e-12;
   so.jacobian = true;  // for the covariance
-  const LeastSquaresSolution solution =
-      solve_least_squares(problem, Eigen::VectorXd::Ones(initial.size()), so);
+  const NonlinearLeastSquaresSolution solution =
+      solve_nonlinear_least_squares(problem, Eigen::VectorXd::Ones(initial.size()), so);
 
   GreyBoxFit out;
   out.converged = solution.termination == Termination::converged;

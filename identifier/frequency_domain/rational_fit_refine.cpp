@@ -65,10 +65,10 @@ bool refine_output_error(const FitData& data, Coefficients& c, int iterations) {
   start << c.b, c.a_low;
 
   const OutputError cost(data, nb, na);
-  LeastSquaresProblem problem;
+  NonlinearLeastSquares problem;
   problem.residuals = cost;
   problem.residual_count = cost.residual_count();
-  LeastSquaresOptions options;
+  NonlinearLeastSquaresOptions options;
   options.max_iterations = iterations;
   options.function_tolerance = 1e-15;
   options.gradient_tolerance = 1e-16;
@@ -77,7 +77,7 @@ bool refine_output_error(const FitData& data, Coefficients& c, int iterations) {
   // a non-finite misfit, common for over-parameterised orders); libraries must not print, so
   // let such runs end on the iteration limit instead (the result is checked below either way).
   options.max_consecutive_invalid_steps = iterations;
-  const LeastSquaresSolution solution = solve_least_squares(problem, start, options);
+  const NonlinearLeastSquaresSolution solution = solve_nonlinear_least_squares(problem, start, options);
   if (!solution.usable()) return false;
 
   const Eigen::VectorXd b_new = solution.x.head(nb);
