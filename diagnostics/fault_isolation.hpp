@@ -74,6 +74,12 @@ struct ParameterRole {
 // Throws Error naming the parameter and the monitored ones when it is not monitored.
 ParameterRole parameter_role(std::string_view parameter);
 
+// The monitored parameters of amb1dof_voltage: R1 R2 kw1 kw2 kr1 kr2 ks, in the order an
+// estimate window carries them. Defined once, with their roles above (fault_isolation.cpp):
+// diagnostics watches the identified physical quantities that stand for a fault of their own;
+// the others the identifier gives (kr1_emf, kr2_emf) are not watched.
+const std::vector<std::string>& monitored_amb1dof_parameters();
+
 // A parameter of the plant: its relative change from the baseline, (value - baseline)/baseline,
 // and the one-sigma uncertainty of that relative change.
 struct Deviation {

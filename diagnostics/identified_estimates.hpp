@@ -1,17 +1,15 @@
 #pragma once
 // The estimate window of one identification: the monitored physical parameters of
-// amb1dof_voltage (fault_isolation.hpp: R1 R2 kw1 kw2 kr1 kr2 ks) with the one-sigma
+// amb1dof_voltage (monitored_amb1dof_parameters(), fault_isolation.hpp) with the one-sigma
 // uncertainty the identifier reports for each.
 #include <map>
 #include <string>
 
 #include "diagnostics/estimate.hpp"
-#include "identifier/families/amb1dof_deadbeat.hpp"
+#include "diagnostics/fault_isolation.hpp"
+#include "identifier/identify_window.hpp"
 
 namespace ambid::diag {
-
-// The parameters a window of amb1dof_voltage carries, in this order.
-const std::vector<std::string>& monitored_amb1dof_parameters();
 
 // From the physical values and their uncertainties (the `physical` and `uncertainty` of a
 // model file, or of an identification). Throws Error naming the first monitored parameter
@@ -22,7 +20,8 @@ EstimateWindow estimate_window(const std::map<std::string, double>& physical,
                                const std::map<std::string, double>& uncertainty, double time,
                                const std::string& plant_id, Source source);
 
-EstimateWindow estimate_window(const ident::Amb1dofIdentification& identification, double time,
+// The window of an identified window of samples (ident::identify_window).
+EstimateWindow estimate_window(const ident::WindowIdentification& identification, double time,
                                const std::string& plant_id, Source source);
 
 }  // namespace ambid::diag

@@ -13,6 +13,7 @@
 #include "identifier/time_domain/closed_loop_validation.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
 #include "identifier/time_domain/markov.hpp"
+#include "identifier/time_domain/method_fits.hpp"
 #include "identifier/time_domain/projection_filter.hpp"
 #include "identifier/time_domain/segment_jackknife.hpp"
 
@@ -29,15 +30,9 @@ LoopSignals signals_of(const Experiment& e) {
   return is_amb1dof(e) ? loop_signals(e, kAmbY, kAmbU, kWho) : loop_signals(e, kWho);
 }
 
-KnownController controller_of(const Experiment& e, const LoopSignals& s, const std::string& method) {
-  if (!e.controller)
-    throw Error(kWho + ": method '" + method + "' needs the controller that closed the loop; the experiment has no controller");
+// The experiment has one: require() checked it for the methods that need it.
+KnownController controller_of(const Experiment& e, const LoopSignals& s) {
   return known_controller(*e.controller, s.u_names, s.y_names);  // refuses feedthrough from u
-}
-
-void require_excitation(const Experiment& e, const std::string& method) {
-  if (!e.has_excitation())
-    throw Error(kWho + ": method '" + method + "' needs the excitation r; the experiment records none (signals.r)");
 }
 
 Index model_order(const Experiment& e, const IdentifyOptions& o) {
@@ -60,22 +55,15 @@ void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realizatio
   model.extra.json()["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
 }
 
-void require_amb1dof(const Experiment& e, const IdentifyOptions& o) {
-  if (!is_amb1dof(e))
-    throw Error(kWho + ": method '" + o.method + "' is defined for plant model 'amb1dof_voltage' only, got '" +
-                e.plant.model + "'");
+// The families check is identify_experiment's (the registry); the order is the method's own.
+void require_four_states(const IdentifyOptions& o) {
   if (o.order != 0 && o.order != 4)
     throw Error(kWho + ": method '" + o.method + "' gives the 4 physical states of amb1dof_voltage; --order " +
                 std::to_string(o.order) + " is not possible");
 }
 
-void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
-  require_amb1dof(e, o);
-  DeadbeatOptions dopt;
-  if (o.method == "deadbeat-iv") {
-    require_excitation(e, o.method);
-    dopt.instrument_lags = o.instrument_lags > 0 ? o.instrument_lags : kDefaultInstrumentLags;
-  }
+void fit_deadbeat_with(const Experiment& e, const IdentifyOptions& o, const DeadbeatOptions& dopt, Model& model) {
+  require_four_states(o);
   const Amb1dofIdentification id = identify_amb1dof_deadbeat(e, dopt);
   model.discrete = id.realization.system;
   model.continuous = id.continuous;
@@ -86,54 +74,51 @@ void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
   model.extra.json()["structure_deviation"] = id.structure_deviation;
 }
 
-using Breaks = std::vector<Index>;
+DeadbeatOptions instrumental_variables(const IdentifyOptions& o) {
+  DeadbeatOptions dopt;
+  dopt.instrument_lags = o.instrument_lags;
+  return dopt;
+}
 
-DiscreteSystem fit_okid(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                        const Breaks& breaks = {}) {
+using Breaks = std::vector<Index>;
+// A realisation of the ARX -> Markov -> ERA methods from the part of the record without the
+// samples at `breaks` (the segment jackknife's joints).
+using Realize = DiscreteSystem (*)(const Experiment&, const IdentifyOptions&, const Breaks&);
+
+DiscreteSystem realize_okid(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   const LoopSignals s = signals_of(e);
   ArxOptions ao;
-  ao.order = arx_order;
+  ao.order = o.arx_order;
   ao.breaks = breaks;
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
-  return era(markov_from_arx(arx, markov_count).system, e.sample_time, eo).system;
+  return era(markov_from_arx(arx, o.markov_count).system, e.sample_time, eo).system;
 }
 
 // The options the ARX -> Markov -> ERA methods share.
 template <typename Options>
-Options arx_era_options(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                        const Breaks& breaks) {
+Options arx_era_options(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   Options out;
   out.breaks = breaks;
-  out.arx_order = arx_order;
-  out.markov_count = markov_count;
+  out.arx_order = o.arx_order;
+  out.markov_count = o.markov_count;
   out.sample_time = e.sample_time;
   out.era.order = model_order(e, o);
   return out;
 }
 
-DiscreteSystem fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                               const Breaks& breaks = {}) {
-  require_excitation(e, "closed-loop");
+DiscreteSystem realize_closed_loop(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   const LoopSignals s = signals_of(e);
-  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, arx_order, markov_count, breaks);
-  return identify_with_known_controller(s.r, s.y, controller_of(e, s, "closed-loop"), co).plant;
+  const auto co = arx_era_options<KnownControllerIdOptions>(e, o, breaks);
+  return identify_with_known_controller(s.r, s.y, controller_of(e, s), co).plant;
 }
 
-DiscreteSystem fit_projection(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                              const Breaks& breaks = {}) {
-  require_excitation(e, "projection");  // without r, uf = u and the plant input is not excited independently
+// Needs r: without it uf = u and the plant input is not excited independently.
+DiscreteSystem realize_projection(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   const LoopSignals s = signals_of(e);
-  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, arx_order, markov_count, breaks);
+  const auto po = arx_era_options<ProjectionFilterOptions>(e, o, breaks);
   return identify_projection_filter(s.y, s.u, s.uf, po).plant;
-}
-
-DiscreteSystem fit_realization(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                               const Breaks& breaks = {}) {
-  return o.method == "okid"          ? fit_okid(e, o, arx_order, markov_count, breaks)
-         : o.method == "closed-loop" ? fit_closed_loop(e, o, arx_order, markov_count, breaks)
-                                     : fit_projection(e, o, arx_order, markov_count, breaks);
 }
 
 void add_warning(Model& model, const std::string& warning) {
@@ -147,13 +132,96 @@ Eigen::Matrix<double, 9, 1> structure_vector(const std::map<std::string, double>
   return v;
 }
 
+// Segment jackknife of the parameters and physical quantities of an ARX/ERA method.
+void add_jackknife_uncertainty(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
+  std::vector<std::map<std::string, double>> estimates;
+  try {
+    for (Index i = 0; i < o.jackknife_segments; ++i) {
+      const LeaveOneSegmentOut cut = experiment_without_segment(e, i, o.jackknife_segments);
+      const Breaks breaks = cut.joint > 0 ? Breaks{cut.joint} : Breaks{};
+      Model part;
+      add_amb1dof_structure(e, realize(cut.experiment, o, breaks), part);
+      part.parameters.insert(part.physical.begin(), part.physical.end());
+      estimates.push_back(part.parameters);
+    }
+  } catch (const Error& error) {
+    add_warning(model, std::string("no uncertainty: a leave-one-segment-out fit failed: ") + error.what());
+    return;
+  }
+  model.uncertainty = jackknife_sigma(estimates);
+  model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
+}
+
+void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
+  const DiscreteSystem realization = realize(e, o, {});
+  model.discrete = realization;
+  if (is_amb1dof(e) && realization.states() == 4) {
+    add_amb1dof_structure(e, realization, model);
+    if (o.jackknife_segments > 0) add_jackknife_uncertainty(realize, e, o, model);
+  } else {
+    add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
+  }
+}
+
+void validate_on(const Experiment& validation, Model& model) {
+  if (!validation.controller) {
+    add_warning(model, "no controller: the model cannot be simulated in closed loop, fit.nrmse not computed");
+    return;
+  }
+  const LoopSignals s = signals_of(validation);
+  const KnownController k = known_controller(*validation.controller, s.u_names, s.y_names);
+  const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state);
+  if (!nrmse.allFinite()) {
+    add_warning(model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
+    return;
+  }
+  for (Index j = 0; j < nrmse.size(); ++j) model.fit_nrmse[s.y_names[std::size_t(j)]] = nrmse(j);
+}
+
+// What method_registry() requires of the experiment, in this order.
+void require(const IdentificationMethod& method, const Experiment& e) {
+  const auto& families = method.families;
+  if (!families.empty() && std::find(families.begin(), families.end(), e.plant.model) == families.end()) {
+    std::string list;
+    for (const auto& f : families) list += (list.empty() ? "'" : "', '") + f;
+    throw Error(kWho + ": method '" + method.name + "' is defined for plant model " + list + "' only, got '" +
+                e.plant.model + "'");
+  }
+  if (method.needs_r && !e.has_excitation())
+    throw Error(kWho + ": method '" + method.name + "' needs the excitation r; the experiment records none (signals.r)");
+  if (method.needs_controller && !e.controller)
+    throw Error(kWho + ": method '" + method.name +
+                "' needs the controller that closed the loop; the experiment has no controller");
+}
+
+}  // namespace
+
+namespace detail {
+
+void fit_deadbeat(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  fit_deadbeat_with(e, o, DeadbeatOptions{}, model);
+}
+
+void fit_deadbeat_iv(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  fit_deadbeat_with(e, o, instrumental_variables(o), model);
+}
+
+void fit_okid(const Experiment& e, const IdentifyOptions& o, Model& model) { fit_realization(realize_okid, e, o, model); }
+
+void fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  fit_realization(realize_closed_loop, e, o, model);
+}
+
+void fit_projection(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  fit_realization(realize_projection, e, o, model);
+}
+
 // Starts from `closed-loop`, `deadbeat-iv` and `deadbeat` (those that succeed), then the
 // prediction-error refinement from the best of them.
-void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count, Model& model) {
-  require_amb1dof(e, o);
-  require_excitation(e, o.method);
+void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  require_four_states(o);
   const LoopSignals s = signals_of(e);
-  controller_of(e, s, o.method);  // the starts need it; refuse early, naming this method
+  controller_of(e, s);  // the starts need it without feedthrough: refuse early
   std::vector<std::string> start_names, failures;
   std::vector<Eigen::Matrix<double, 9, 1>> starts;
   auto try_start = [&](const std::string& name, auto&& estimate) {
@@ -169,14 +237,10 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
   };
   try_start("closed-loop", [&] {
     Model start;
-    add_amb1dof_structure(e, fit_closed_loop(e, o, arx_order, markov_count), start);
+    add_amb1dof_structure(e, realize_closed_loop(e, o, {}), start);
     return start.parameters;
   });
-  try_start("deadbeat-iv", [&] {
-    DeadbeatOptions dopt;
-    dopt.instrument_lags = o.instrument_lags > 0 ? o.instrument_lags : kDefaultInstrumentLags;
-    return identify_amb1dof_deadbeat(e, dopt).parameters;
-  });
+  try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });
   try_start("deadbeat", [&] { return identify_amb1dof_deadbeat(e, DeadbeatOptions{}).parameters; });
   if (starts.empty()) {
     std::string all;
@@ -208,49 +272,7 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Index arx_order, Ind
                                {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
 }
 
-// Segment jackknife of the parameters and physical quantities of an ARX/ERA method.
-void add_jackknife_uncertainty(const Experiment& e, const IdentifyOptions& o, Index arx_order, Index markov_count,
-                               Model& model) {
-  std::vector<std::map<std::string, double>> estimates;
-  try {
-    for (Index i = 0; i < o.jackknife_segments; ++i) {
-      const LeaveOneSegmentOut cut = experiment_without_segment(e, i, o.jackknife_segments);
-      const Breaks breaks = cut.joint > 0 ? Breaks{cut.joint} : Breaks{};
-      Model part;
-      add_amb1dof_structure(e, fit_realization(cut.experiment, o, arx_order, markov_count, breaks), part);
-      part.parameters.insert(part.physical.begin(), part.physical.end());
-      estimates.push_back(part.parameters);
-    }
-  } catch (const Error& error) {
-    add_warning(model, std::string("no uncertainty: a leave-one-segment-out fit failed: ") + error.what());
-    return;
-  }
-  model.uncertainty = jackknife_sigma(estimates);
-  model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
-}
-
-void validate_on(const Experiment& validation, Model& model) {
-  if (!validation.controller) {
-    add_warning(model, "no controller: the model cannot be simulated in closed loop, fit.nrmse not computed");
-    return;
-  }
-  const LoopSignals s = signals_of(validation);
-  const KnownController k = known_controller(*validation.controller, s.u_names, s.y_names);
-  const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state);
-  if (!nrmse.allFinite()) {
-    add_warning(model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
-    return;
-  }
-  for (Index j = 0; j < nrmse.size(); ++j) model.fit_nrmse[s.y_names[std::size_t(j)]] = nrmse(j);
-}
-
-}  // namespace
-
-const std::vector<std::string>& identification_methods() {
-  static const std::vector<std::string> methods = {"deadbeat", "deadbeat-iv", "okid", "closed-loop", "projection",
-                                                   "pem"};
-  return methods;
-}
+}  // namespace detail
 
 Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
   if (begin < 0 || end > e.samples() || end - begin < 2)
@@ -273,9 +295,7 @@ Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
 }
 
 Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
-  const auto& methods = identification_methods();
-  if (std::find(methods.begin(), methods.end(), o.method) == methods.end())
-    throw Error(kWho + ": unknown method '" + o.method + "' (expected deadbeat, deadbeat-iv, okid, closed-loop, projection or pem)");
+  const IdentificationMethod& method = identification_method(o.method, kWho);
   if (!(o.validation_fraction >= 0.0 && o.validation_fraction <= 0.9))
     throw Error(kWho + ": validation fraction must be in [0, 0.9], got " + std::to_string(o.validation_fraction));
   if (o.skip_samples < 0 || o.arx_order < 0 || o.markov_count < 0 || o.instrument_lags < 0)
@@ -284,33 +304,23 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
     throw Error(kWho + ": jackknife segments must be 0 (no uncertainty) or >= 2, got " +
                 std::to_string(o.jackknife_segments));
   e.validate();
+  require(method, e);
   const Index usable = e.samples() - o.skip_samples;
   const Index validation = static_cast<Index>(std::floor(o.validation_fraction * double(usable)));
   if (usable - validation < 2)
     throw InsufficientData(kWho + ": " + std::to_string(e.samples()) + " samples, " + std::to_string(o.skip_samples) +
                            " skipped, leave nothing to fit");
   const Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
-  const Index arx_order = o.arx_order > 0 ? o.arx_order : kDefaultArxOrder;
-  const Index markov_count = o.markov_count > 0 ? o.markov_count : kDefaultMarkovCount;
+  IdentifyOptions resolved = o;
+  if (resolved.arx_order == 0) resolved.arx_order = kDefaultArxOrder;
+  if (resolved.markov_count == 0) resolved.markov_count = kDefaultMarkovCount;
+  if (resolved.instrument_lags == 0) resolved.instrument_lags = kDefaultInstrumentLags;
 
   Model model;
   model.plant_model = e.plant.model;
   model.method = o.method;
   model.sample_time = e.sample_time;
-  if (o.method == "deadbeat" || o.method == "deadbeat-iv") {
-    fit_deadbeat(fit, o, model);
-  } else if (o.method == "pem") {
-    fit_pem(fit, o, arx_order, markov_count, model);
-  } else {
-    const DiscreteSystem realization = fit_realization(fit, o, arx_order, markov_count);
-    model.discrete = realization;
-    if (is_amb1dof(e) && realization.states() == 4) {
-      add_amb1dof_structure(e, realization, model);
-      if (o.jackknife_segments > 0) add_jackknife_uncertainty(fit, o, arx_order, markov_count, model);
-    } else {
-      add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
-    }
-  }
+  method.fit(fit, resolved, model);
   model.discrete.sample_time = e.sample_time;
   model.extra.json()["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
   if (validation >= 2) validate_on(experiment_segment(e, e.samples() - validation, e.samples()), model);

@@ -2,17 +2,8 @@
 // Identification of an experiment by method name -> the Model of model.json. The one entry
 // point that `ambid identify`, the identifier daemon and `ambid diagnose` share.
 //
-// Methods (all time domain, all from closed-loop data):
-//   deadbeat     seed 000 physical realisation (amb1dof_voltage only; needs the controller)
-//   deadbeat-iv  the same equations solved by instrumental variables with the delayed
-//                excitation r as instruments: consistent under sensor noise (needs r)
-//   okid         ARX of y on the plant input u, OKID Markov parameters, ERA (no controller needed)
-//   closed-loop  known-controller identification from r to y (Lee ch. 2; needs controller and r)
-//   projection   projection filters with unknown feedback (Lee ch. 4; needs the feedback uf = u - r)
-//   pem          prediction-error refinement (innovations form, direct method) of v1..v9 by
-//                Ceres (amb1dof_prediction_error.hpp), started from the best of closed-loop,
-//                deadbeat-iv and deadbeat: consistent under sensor noise (amb1dof_voltage only;
-//                needs controller and r for the starts)
+// The methods (all time domain, all from closed-loop data), what each needs and the plant
+// models it is defined for are listed in methods.hpp; `pem` is amb1dof_prediction_error.hpp.
 // For `amb1dof_voltage` every 4-state result is brought to physical coordinates (x, x', i1, i2)
 // and gives v1..v9 and the physical quantities (amb1dof_structure.hpp), each with its one-sigma
 // uncertainty: deadbeat/deadbeat-iv from the least-squares covariance, pem from the QR of the
@@ -29,11 +20,12 @@
 
 #include "core/experiment.hpp"
 #include "core/model_file.hpp"
+#include "identifier/methods.hpp"
 
 namespace ambid::ident {
 
 struct IdentifyOptions {
-  std::string method;              // one of identification_methods()
+  std::string method;              // one of identification_methods() (methods.hpp)
   Eigen::Index order = 0;          // model states; 0: 4 for amb1dof_voltage, else ERA's suggestion
   Eigen::Index arx_order = 0;      // okid/closed-loop/projection; 0: kDefaultArxOrder
   Eigen::Index markov_count = 0;   // Markov parameters for ERA; 0: kDefaultMarkovCount
@@ -47,11 +39,9 @@ inline constexpr Eigen::Index kDefaultArxOrder = 16;
 inline constexpr Eigen::Index kDefaultMarkovCount = 30;
 inline constexpr Eigen::Index kDefaultInstrumentLags = 60;
 
-const std::vector<std::string>& identification_methods();
-
 // Throws Error naming the problem for an unknown method, an experiment the method cannot use
-// (no controller, a controller with feedthrough from u, no excitation, wrong plant model),
-// bad options; InsufficientData when the data cannot support the model (too short, not
+// (a plant model, controller or excitation it needs (methods.hpp) is missing, a controller
+// with feedthrough from u), bad options; InsufficientData when the data cannot support the model (too short, not
 // exciting, rank deficient). Warnings (e.g. no validation possible) go to
 // Model::extra["warnings"] (an array of strings).
 Model identify_experiment(const Experiment& experiment, const IdentifyOptions& options);

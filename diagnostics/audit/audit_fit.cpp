@@ -1,11 +1,11 @@
 #include "diagnostics/audit/audit_fit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include <ceres/ceres.h>
-
 #include "core/error.hpp"
+#include "identifier/nonlinear_least_squares.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -28,10 +28,10 @@ struct ReplayResiduals {
     return e;
   }
 
-  bool operator()(double const* const* parameters, double* residuals) const {
+  bool operator()(const double* theta, double* residuals) const {
     Eigen::MatrixXd y;
     try {
-      y = replay_outputs(measured, {at(parameters[0])}, estimation.end);
+      y = replay_outputs(measured, {at(theta)}, estimation.end);
     } catch (const Error&) {
       return false;  // the rotor touched the bearing, or an invalid parameter: not a step to take
     }
@@ -59,40 +59,34 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
                      const Segment& estimation, const FitOptions& options) {
   const sim::EffectSpec& spec = sim::effect_spec(start.name);
-  auto* functor = new ReplayResiduals{measured, measured_y, start, spec.parameters, estimation, {}};
-  functor->inverse_spread = nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation)
-                                .cwiseInverse();
+  ReplayResiduals residuals{measured, measured_y, start, spec.parameters, estimation, {}};
+  residuals.inverse_spread =
+      nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();
   const int k = int(spec.parameters.size());
-  std::vector<double> theta(std::size_t(k), 0.0);
-  for (int i = 0; i < k; ++i) theta[std::size_t(i)] = start.at(spec.parameters[std::size_t(i)].name) / spec.parameters[std::size_t(i)].scale;
-
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<ReplayResiduals, ceres::CENTRAL>(functor);
-  cost->AddParameterBlock(k);
-  cost->SetNumResiduals(int(estimation.size() * measured_y.cols()));
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, theta.data());
+  Eigen::VectorXd theta(k);
+  ident::NonlinearLeastSquares problem;
+  problem.residuals = [&residuals](const double* x, double* r, double*) { return residuals(x, r); };
+  problem.residual_count = int(estimation.size() * measured_y.cols());
+  problem.differentiation = ident::Differentiation::central;
+  problem.lower.resize(k);
+  problem.upper.resize(k);
   for (int i = 0; i < k; ++i) {
     const auto& p = spec.parameters[std::size_t(i)];
     double lower = p.lower / p.scale;
     if (p.unit == "s" && p.lower == 0.0) lower = kSmallestLag;
-    theta[std::size_t(i)] = std::clamp(theta[std::size_t(i)], lower, p.upper / p.scale);
-    problem.SetParameterLowerBound(theta.data(), i, lower);
-    problem.SetParameterUpperBound(theta.data(), i, p.upper / p.scale);
+    problem.lower(i) = lower;
+    problem.upper(i) = p.upper / p.scale;
+    theta(i) = std::clamp(start.at(p.name) / p.scale, lower, p.upper / p.scale);
   }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = options.max_iterations;
-  solver.logging_type = ceres::SILENT;
-  solver.minimizer_progress_to_stdout = false;
-  solver.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
+  ident::NonlinearLeastSquaresOptions solver;
+  solver.max_iterations = options.max_iterations;
+  const ident::NonlinearLeastSquaresSolution solution = ident::solve_nonlinear_least_squares(problem, theta, solver);
 
   EffectFit fit;
-  fit.effect = functor->at(theta.data());
-  fit.cost = 2.0 * summary.final_cost;  // Ceres reports half the sum of squares
-  fit.iterations = int(summary.iterations.size());
-  fit.converged = summary.termination_type == ceres::CONVERGENCE;
+  fit.effect = residuals.at(solution.x.data());
+  fit.cost = 2.0 * solution.final_cost;  // the solver reports half the sum of squares
+  fit.iterations = solution.iterations;
+  fit.converged = solution.termination == ident::Termination::converged;
   if (!std::isfinite(fit.cost)) throw Error("audit: the fit of " + start.name + " could not start from its initial values");
   return fit;
 }

@@ -24,6 +24,7 @@ struct Role {
   ParameterRole role;
 };
 
+// The monitored parameters, in their order, and the role of each (the one list of them).
 const Role kRoles[] = {
     {"R1", {"coil_resistance", 1, "coil 1 resistance"}},
     {"R2", {"coil_resistance", 2, "coil 2 resistance"}},
@@ -108,8 +109,18 @@ bool is_known_fault(std::string_view fault) {
 ParameterRole parameter_role(std::string_view parameter) {
   for (const Role& r : kRoles)
     if (r.parameter == parameter) return r.role;
-  throw Error("diagnostics: parameter '" + std::string(parameter) +
-              "' is not monitored (monitored: R1, R2, kw1, kw2, kr1, kr2, ks)");
+  std::string monitored;
+  for (const Role& r : kRoles) monitored += (monitored.empty() ? "" : ", ") + std::string(r.parameter);
+  throw Error("diagnostics: parameter '" + std::string(parameter) + "' is not monitored (monitored: " + monitored + ")");
+}
+
+const std::vector<std::string>& monitored_amb1dof_parameters() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const Role& r : kRoles) out.emplace_back(r.parameter);
+    return out;
+  }();
+  return names;
 }
 
 void IsolationConfig::validate() const {
@@ -123,10 +134,10 @@ void IsolationConfig::validate() const {
   if (max_faults < 1) throw Error("fault isolation: max_faults must be at least 1");
   for (const FaultHypothesis& h : hypotheses) {
     if (!is_known_fault(h.fault)) throw Error("fault isolation: hypothesis of unknown fault '" + h.fault + "'");
-    for (const std::string_view p : {"R1", "R2", "kw1", "kw2", "kr1", "kr2", "ks"}) {
-      const auto it = h.signature.find(std::string(p));
+    for (const std::string& p : monitored_amb1dof_parameters()) {
+      const auto it = h.signature.find(p);
       if (it == h.signature.end() || !std::isfinite(it->second))
-        throw Error("fault isolation: hypothesis '" + h.subject + "' has no finite signature of " + std::string(p));
+        throw Error("fault isolation: hypothesis '" + h.subject + "' has no finite signature of " + p);
     }
   }
 }

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "core/error.hpp"
-#include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/fault_isolation.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"

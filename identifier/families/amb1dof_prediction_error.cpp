@@ -2,15 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <string>
 #include <vector>
 
 #include <Eigen/LU>  // closed-form fixed-size 3x3 inverse only (kalman_predictor_gain)
-#include <ceres/ceres.h>
+#include <ceres/jet.h>  // dual numbers for the automatic derivatives; the solver is nonlinear_least_squares.hpp
 
 #include "core/error.hpp"
 #include "identifier/amb1dof_structure.hpp"
+#include "identifier/nonlinear_least_squares.hpp"
 #include "identifier/time_domain/least_squares.hpp"
 
 namespace ambid::ident {
@@ -128,37 +128,61 @@ class PredictionResidual {
   const Record& d_;
 };
 
-struct Parameters {
-  double v[9], w[3], x[4], k[kGains];
-};
+// [p_v (9), p_w (3), p_x (4), p_k (kGains)]; all 1, 0 at the start (the start's own model).
+constexpr int kParameters = 9 + 3 + 4 + kGains;
+using Parameters = Eigen::Matrix<double, kParameters, 1>;
 
 Parameters start_parameters() {
-  Parameters p{};
-  std::fill(p.v, p.v + 9, 1.0);
+  Parameters p = Parameters::Zero();
+  p.head<9>().setOnes();
   return p;
 }
 
-void add_residual(const Record& record, Parameters& p, ceres::Problem& problem) {
-  const int residuals = static_cast<int>(3 * record.y.rows());
-  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PredictionResidual, ceres::DYNAMIC, 9, 3, 4, kGains>(
-                               new PredictionResidual(record), residuals),
-                           nullptr, p.v, p.w, p.x, p.k);
+int residual_count(const Record& record) { return static_cast<int>(3 * record.y.rows()); }
+
+// The residuals at p and, with `jacobian`, their derivatives by forward-mode automatic
+// differentiation: one dual number per parameter, as Ceres' AutoDiffCostFunction does.
+bool prediction_residuals(const PredictionResidual& f, int count, const double* p, double* residuals,
+                          double* jacobian) {
+  if (jacobian == nullptr) return f(p, p + 9, p + 12, p + 16, residuals);
+  using Jet = ceres::Jet<double, kParameters>;
+  Jet q[kParameters];
+  for (int i = 0; i < kParameters; ++i) q[i] = Jet(p[i], i);
+  std::vector<Jet> r(static_cast<std::size_t>(count));
+  if (!f(q, q + 9, q + 12, q + 16, r.data())) return false;
+  for (int i = 0; i < count; ++i) {
+    residuals[i] = r[std::size_t(i)].a;
+    for (int j = 0; j < kParameters; ++j) jacobian[i * kParameters + j] = r[std::size_t(i)].v(j);
+  }
+  return true;
 }
 
-ceres::Solver::Summary solve(ceres::Problem& problem, int max_iterations) {
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = max_iterations;
+// The residuals at p without derivatives (empty when the predictor diverges).
+std::vector<double> residuals_at(const Record& record, const Parameters& p) {
+  std::vector<double> e(std::size_t(residual_count(record)));
+  if (!PredictionResidual(record)(p.data(), p.data() + 9, p.data() + 12, p.data() + 16, e.data())) e.clear();
+  return e;
+}
+
+// Refines p in place; with `jacobian`, the solution carries the residuals and Jacobian at p.
+NonlinearLeastSquaresSolution solve(const Record& record, Parameters& p, int max_iterations, bool jacobian = false) {
+  const PredictionResidual f(record);
+  NonlinearLeastSquares problem;
+  problem.residual_count = residual_count(record);
+  problem.residuals = [&f, count = problem.residual_count](const double* x, double* r, double* J) {
+    return prediction_residuals(f, count, x, r, J);
+  };
+  NonlinearLeastSquaresOptions o;
+  o.max_iterations = max_iterations;
   // The parameters are scaled to order one; changes below 1e-8 are far below any sigma.
-  so.function_tolerance = 1e-10;
-  so.parameter_tolerance = 1e-8;
-  so.gradient_tolerance = 1e-12;
-  so.logging_type = ceres::SILENT;
-  so.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
-  if (!summary.IsSolutionUsable()) throw InsufficientData(kWho + ": the solver failed (" + summary.message + ")");
-  return summary;
+  o.function_tolerance = 1e-10;
+  o.parameter_tolerance = 1e-8;
+  o.gradient_tolerance = 1e-12;
+  o.jacobian = jacobian;
+  NonlinearLeastSquaresSolution solution = solve_nonlinear_least_squares(problem, p, o);
+  if (!solution.usable()) throw InsufficientData(kWho + ": the solver failed (" + solution.message + ")");
+  p = solution.x;
+  return solution;
 }
 
 // The predictor gain of the steady-state Kalman filter of (A, C) without process noise and
@@ -207,12 +231,11 @@ struct Curvature {
   double condition_number = 0.0;
 };
 
-Curvature curvature(ceres::Problem& problem, Index samples, const Amb1dofPredictionErrorOptions& options) {
-  constexpr Index n = 9 + 3 + 4 + kGains;
-  double cost = 0.0;
-  std::vector<double> e;
-  ceres::CRSMatrix J;
-  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, &e, nullptr, &J);
+Curvature curvature(const NonlinearLeastSquaresSolution& fit, Index samples, const Amb1dofPredictionErrorOptions& options) {
+  constexpr Index n = kParameters;
+  if (!fit.evaluated) throw InsufficientData(kWho + ": the predictor diverges at the solution");
+  const Eigen::MatrixXd& J = fit.jacobian;
+  const Eigen::VectorXd& e = fit.residuals;
   std::vector<std::string> names = amb1dof_structure_names();
   for (const char* name : {"w_x''", "w_i1'", "w_i2'", "x0_x", "x0_x'", "x0_i1", "x0_i2"}) names.emplace_back(name);
   for (int i = 0; i < kGains; ++i) names.push_back("K" + std::to_string(i / 3 + 1) + std::to_string(i % 3 + 1));
@@ -227,10 +250,9 @@ Curvature curvature(ceres::Problem& problem, Index samples, const Amb1dofPredict
     Eigen::VectorXd score = Eigen::VectorXd::Zero(n);
     for (Index i = 0; i < 3 * count; ++i) {
       const Index row = 3 * begin + i;
-      for (int a = J.rows[std::size_t(row)]; a < J.rows[std::size_t(row) + 1]; ++a)
-        rows(i, J.cols[std::size_t(a)]) = J.values[std::size_t(a)];
-      target(i) = e[std::size_t(row)];
-      score += rows.row(i).transpose() * e[std::size_t(row)];
+      rows.row(i) = J.row(row);
+      target(i) = e(row);
+      score += rows.row(i).transpose() * e(row);
     }
     out.score_covariance += score * score.transpose();
     qr.add(rows.topRows(3 * count), target.head(3 * count));
@@ -245,8 +267,8 @@ Curvature curvature(ceres::Problem& problem, Index samples, const Amb1dofPredict
 
 double rms(const Eigen::VectorXd& x) { return x.norm() / std::sqrt(double(x.size())); }
 
-Eigen::VectorXd output_column(const std::vector<double>& e, Index j, Index samples) {
-  return Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<3>>(e.data() + j, samples);
+Eigen::VectorXd output_column(const double* e, Index j, Index samples) {
+  return Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<3>>(e + j, samples);
 }
 
 }  // namespace
@@ -288,12 +310,9 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   // The start whose predictor has the lowest cost goes on (the next one if it fails).
   std::vector<std::pair<double, std::size_t>> ranked;
   for (std::size_t i = 0; i < records.size(); ++i) {
-    Parameters q = start_parameters();
-    ceres::Problem screening;
-    add_residual(records[i], q, screening);
-    double cost = std::numeric_limits<double>::infinity();
-    if (screening.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr, nullptr) && std::isfinite(cost))
-      ranked.emplace_back(cost, i);
+    const std::vector<double> e = residuals_at(records[i], start_parameters());
+    const double cost = 0.5 * Eigen::Map<const Eigen::VectorXd>(e.data(), Index(e.size())).squaredNorm();
+    if (!e.empty() && std::isfinite(cost)) ranked.emplace_back(cost, i);
   }
   if (ranked.empty()) throw InsufficientData(kWho + ": the predictor of every starting model diverges");
   std::sort(ranked.begin(), ranked.end());
@@ -306,9 +325,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
     (void)cost;
     p = start_parameters();
     try {
-      ceres::Problem first;
-      add_residual(records[index], p, first);
-      fit.iterations += static_cast<int>(solve(first, kWeightingIterations).iterations.size());
+      fit.iterations += solve(records[index], p, kWeightingIterations).iterations;
       fit.start_index = static_cast<int>(index);
       failure.clear();
       break;
@@ -319,39 +336,32 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   if (!failure.empty()) throw InsufficientData(failure);
   Record& record = records[std::size_t(fit.start_index)];
   {
-    ceres::Problem first;
-    add_residual(record, p, first);
-    std::vector<double> e;
-    first.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &e, nullptr, nullptr);
+    const std::vector<double> e = residuals_at(record, p);
+    if (e.empty()) throw InsufficientData(kWho + ": the predictor diverges after the weighting pass");
     for (Index j = 0; j < 3; ++j) {
-      const double unweighted = rms(output_column(e, j, N)) / record.weight(j);
+      const double unweighted = rms(output_column(e.data(), j, N)) / record.weight(j);
       if (!(unweighted > 0.0)) throw InsufficientData(kWho + ": output " + std::to_string(j + 1) + " fits exactly");
       record.weight(j) = 1.0 / unweighted;
     }
   }
-  ceres::Problem problem;
-  add_residual(record, p, problem);
-  const ceres::Solver::Summary summary = solve(problem, options.max_iterations);
-  fit.iterations += static_cast<int>(summary.iterations.size());
-  fit.converged = summary.termination_type == ceres::CONVERGENCE;
-  fit.start_cost = summary.initial_cost;
-  fit.final_cost = summary.final_cost;
+  const NonlinearLeastSquaresSolution solution = solve(record, p, options.max_iterations, true);
+  fit.iterations += solution.iterations;
+  fit.converged = solution.termination == Termination::converged;
+  fit.start_cost = solution.initial_cost;
+  fit.final_cost = solution.final_cost;
 
-  const Curvature c = curvature(problem, N, options);
+  const Curvature c = curvature(solution, N, options);
   fit.condition_number = c.condition_number;
   const Eigen::MatrixXd cov_p = c.inverse_gram * c.score_covariance * c.inverse_gram;
-  for (Index i = 0; i < 9; ++i) fit.v(i) = record.v0(i) * p.v[i];
-  for (Index i = 0; i < 3; ++i) fit.offset(i) = record.w_scale(i) * p.w[i];
-  for (Index i = 0; i < 4; ++i) fit.initial_state(i) = record.x_scale(i) * p.x[i];
+  for (Index i = 0; i < 9; ++i) fit.v(i) = record.v0(i) * p(i);
+  for (Index i = 0; i < 3; ++i) fit.offset(i) = record.w_scale(i) * p(9 + i);
+  for (Index i = 0; i < 4; ++i) fit.initial_state(i) = record.x_scale(i) * p(12 + i);
   for (Index i = 0; i < 4; ++i)
     for (Index j = 0; j < 3; ++j)
-      fit.predictor_gain(i, j) = record.K0(i, j) + record.k_scale(i, j) * p.k[3 * i + j];
+      fit.predictor_gain(i, j) = record.K0(i, j) + record.k_scale(i, j) * p(16 + 3 * i + j);
   fit.covariance = record.v0.asDiagonal() * cov_p.topLeftCorner<9, 9>() * record.v0.asDiagonal();
-  {
-    std::vector<double> e;
-    problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, &e, nullptr, nullptr);
-    for (Index j = 0; j < 3; ++j) fit.residual_rms(j) = rms(output_column(e, j, N)) / record.weight(j);
-  }
+  for (Index j = 0; j < 3; ++j)
+    fit.residual_rms(j) = rms(output_column(solution.residuals.data(), j, N)) / record.weight(j);
   Eigen::Matrix4d A;
   Eigen::Matrix<double, 4, 3> B;
   const double w0[3] = {0.0, 0.0, 0.0};

@@ -5,11 +5,10 @@
 #include <string>
 #include <vector>
 
-#include <ceres/ceres.h>
-
 #include "core/error.hpp"
 #include "core/linalg.hpp"
 #include "identifier/frequency_domain/freq_response.hpp"
+#include "identifier/nonlinear_least_squares.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -55,18 +54,15 @@ struct Residuals {
   }
 };
 
-class GreyBoxCost final : public ceres::CostFunction {
+// The residuals and their central differences in the scaled parameters (all of order one).
+class GreyBoxCost {
  public:
-  explicit GreyBoxCost(const Residuals& r) : r_(r) {
-    set_num_residuals(r.count());
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(r.scale.size()));
-  }
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    if (!r_(parameters[0], residuals)) return false;
-    if (jacobians == nullptr || jacobians[0] == nullptr) return true;
-    // Central differences in the scaled parameters (all of order one).
-    const int p = static_cast<int>(r_.scale.size()), m = num_residuals();
-    std::vector<double> x(parameters[0], parameters[0] + p), rp(static_cast<std::size_t>(m)), rm(static_cast<std::size_t>(m));
+  explicit GreyBoxCost(const Residuals& r) : r_(r) {}
+  bool operator()(const double* parameters, double* residuals, double* jacobian) const {
+    if (!r_(parameters, residuals)) return false;
+    if (jacobian == nullptr) return true;
+    const int p = static_cast<int>(r_.scale.size()), m = r_.count();
+    std::vector<double> x(parameters, parameters + p), rp(static_cast<std::size_t>(m)), rm(static_cast<std::size_t>(m));
     for (int k = 0; k < p; ++k) {
       const double h = 1e-6 * std::max(1.0, std::abs(x[static_cast<std::size_t>(k)]));
       const double x0 = x[static_cast<std::size_t>(k)];
@@ -76,7 +72,7 @@ class GreyBoxCost final : public ceres::CostFunction {
       if (!r_(x.data(), rm.data())) return false;
       x[static_cast<std::size_t>(k)] = x0;
       for (int i = 0; i < m; ++i)
-        jacobians[0][i * p + k] = (rp[static_cast<std::size_t>(i)] - rm[static_cast<std::size_t>(i)]) / (2.0 * h);
+        jacobian[i * p + k] = (rp[static_cast<std::size_t>(i)] - rm[static_cast<std::size_t>(i)]) / (2.0 * h);
     }
     return true;
   }
@@ -118,37 +114,28 @@ GreyBoxFit fit_grey_box(const Frf& frf, const std::function<ContinuousSystem(con
     res.weight.push_back(w);
   }
 
-  std::vector<double> x(static_cast<std::size_t>(initial.size()), 1.0);
-  ceres::Problem::Options po;
-  po.cost_function_ownership = ceres::TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
-  auto* cost = new GreyBoxCost(res);
-  problem.AddResidualBlock(cost, nullptr, x.data());
-  ceres::Solver::Options so;
-  so.linear_solver_type = ceres::DENSE_QR;
-  so.max_num_iterations = o.max_iterations;
+  NonlinearLeastSquares problem;
+  problem.residuals = GreyBoxCost(res);
+  problem.residual_count = res.count();
+  NonlinearLeastSquaresOptions so;
+  so.max_iterations = o.max_iterations;
   so.function_tolerance = 1e-14;
   so.gradient_tolerance = 1e-14;
   so.parameter_tolerance = 1e-12;
-  so.logging_type = ceres::SILENT;
-  so.minimizer_progress_to_stdout = false;
-  so.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(so, &problem, &summary);
+  so.jacobian = true;  // for the covariance
+  const NonlinearLeastSquaresSolution solution =
+      solve_nonlinear_least_squares(problem, Eigen::VectorXd::Ones(initial.size()), so);
 
   GreyBoxFit out;
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.iterations = static_cast<int>(summary.iterations.size());
-  const Eigen::VectorXd xs = Eigen::Map<const Eigen::VectorXd>(x.data(), initial.size());
-  out.parameters = res.scale.cwiseProduct(xs);
+  out.converged = solution.termination == Termination::converged;
+  out.iterations = solution.iterations;
+  out.parameters = res.scale.cwiseProduct(solution.x);
 
   // Jacobian at the solution, covariance by QR.
   const int m = res.count(), p = static_cast<int>(initial.size());
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J(m, p);
-  Eigen::VectorXd r(m);
-  const double* params[1] = {x.data()};
-  double* jac[1] = {J.data()};
-  if (!cost->Evaluate(params, r.data(), jac)) throw Error("grey-box fit: the model refuses the fitted parameters");
+  if (!solution.evaluated) throw Error("grey-box fit: the model refuses the fitted parameters");
+  const Eigen::MatrixXd& J = solution.jacobian;
+  const Eigen::VectorXd& r = solution.residuals;
   out.misfit = r.squaredNorm() / static_cast<double>(m);  // = mean |w e|^2 over elements and lines
   Eigen::MatrixXd cov = linalg::qr_inverse_gram(J);  // empty when J is rank deficient
   if (cov.size() != 0) {

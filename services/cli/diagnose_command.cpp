@@ -1,6 +1,6 @@
 // `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
 // Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
-// identified (identifier/identify_experiment, method closed-loop by default: Lee ch. 2, unbiased
+// identified (identifier/identify_window.hpp, method closed-loop by default: Lee ch. 2, unbiased
 // on an off-nominal plant but reporting no sigma, so the baseline's learned window-to-window
 // scatter is the whole sigma_eff; deadbeat reports sigmas but is biased off nominal). The first
 // window of each experiment skips kSettlingSamples (a record starts at the nominal operating
@@ -34,7 +34,8 @@
 #include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
-#include "identifier/identify_experiment.hpp"
+#include "identifier/identify_window.hpp"
+#include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
 #include "services/report/atomic_file.hpp"
 #include "services/report/figure.hpp"
@@ -50,7 +51,7 @@ struct DiagnoseArguments {
   std::vector<std::string> inputs;
   std::size_t baseline = 3;
   double window = 0.25;
-  std::string method = "closed-loop";
+  std::string method = ident::kDefaultWindowMethod;
   std::string plant_id = "plant";
   std::string out;
 };
@@ -89,12 +90,7 @@ Input model_input(const std::string& file, double start, const std::string& plan
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
                        const std::string& plant_id) {
-  ident::IdentifyOptions options;
-  options.method = method;
-  options.validation_fraction = 0.0;  // every sample of a window goes into its estimate
-  // No jackknife sigmas for the ERA methods: the detection is tuned on the baseline's learned
-  // scatter (diagnostics/baseline.hpp), and 8 extra fits per window would slow it 8-fold.
-  options.jackknife_segments = 0;
+  ident::IdentifyOptions options = ident::window_identify_options(method);
   const Experiment e = read_experiment(file).experiment;
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
@@ -109,8 +105,8 @@ Input experiment_input(const std::string& file, double start, double window, con
       try {
         const double end = start + double(i + 1) * double(samples) * e.sample_time;
         options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
-        const Model m = ident::identify_experiment(parts[i], options);
-        in.windows.push_back(diag::estimate_window(m.physical, m.uncertainty, end, plant_id, diag::Source::replay));
+        in.windows.push_back(
+            diag::estimate_window(ident::identify_window(parts[i], options), end, plant_id, diag::Source::replay));
       } catch (const Error& err) {
         throw Error("window " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + err.what());
       }
@@ -264,9 +260,11 @@ void add_diagnose_command(CLI::App& app) {
   cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
       ->capture_default_str();
   cmd->add_option("--method", args->method,
-                  "identification of each window (identifier/identify_experiment.hpp); closed-loop reports no "
-                  "sigma (the baseline scatter is used), deadbeat does but is biased off nominal")
+                  "identification of each window: " + ident::method_names(" | ") +
+                      " (below); closed-loop reports no sigma (the baseline scatter is used), deadbeat does but is "
+                      "biased off nominal")
       ->capture_default_str();
+  cmd->footer("--method:\n" + ident::method_table());
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();
   cmd->callback([args] { run(*args); });

@@ -7,6 +7,7 @@
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
 #include "identifier/identify_experiment.hpp"
+#include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
 
 namespace ambid::cli {
@@ -38,7 +39,7 @@ void add_identify_command(CLI::App& app) {
   auto& o = args->options;
   CLI::App* cmd = app.add_subcommand("identify", "identify the plant of an experiment and write model.json");
   cmd->add_option("experiment", args->experiment, "experiment (.json sidecar, .csv or stem)")->required();
-  cmd->add_option("--method", o.method, "deadbeat | deadbeat-iv | okid | closed-loop | projection | pem")->required();
+  cmd->add_option("--method", o.method, ident::method_names(" | ") + " (below)")->required();
   cmd->add_option("--order", o.order, "model states (0: the plant model's, else ERA's suggestion)")
       ->capture_default_str();
   cmd->add_option("--arx-order", o.arx_order, "ARX order of okid/closed-loop/projection (0: default)")
@@ -52,6 +53,7 @@ void add_identify_command(CLI::App& app) {
   cmd->add_option("--validation", o.validation_fraction, "fraction at the end kept for validation")
       ->capture_default_str();
   cmd->add_option("--out", args->out, "model file to write")->required();
+  cmd->footer("--method:\n" + ident::method_table());
   cmd->callback([args] {
     const ReadResult read = read_experiment(args->experiment);
     for (const auto& w : read.warnings) std::cerr << "ambid identify: warning: " << w << "\n";

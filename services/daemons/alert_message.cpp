@@ -1,7 +1,8 @@
 #include "services/daemons/alert_message.hpp"
 
 #include <algorithm>
-#include <array>
+
+#include "diagnostics/fault_isolation.hpp"
 
 namespace ambid::daemons {
 
@@ -20,7 +21,7 @@ bus::Alert to_message(const diag::Alert& a) {
 }
 
 diag::EstimateWindow estimate_window(const bus::IdentifiedModel& model, diag::Source source) {
-  static const std::array<std::string, 7> monitored{"R1", "R2", "kw1", "kw2", "kr1", "kr2", "ks"};
+  const std::vector<std::string>& monitored = diag::monitored_amb1dof_parameters();
   diag::EstimateWindow w;
   w.time = model.time;
   w.plant_id = model.plant_id;

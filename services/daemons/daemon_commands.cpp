@@ -1,7 +1,10 @@
 // `ambid daemon plant|identifier|diagnostics|frf`: the daemons as subcommands of the one `ambid`
 // binary (services/daemons/README.md says why).
 #include <memory>
+#include <string>
 
+#include "identifier/identify_window.hpp"
+#include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/diagnostics_daemon.hpp"
@@ -12,13 +15,14 @@
 namespace ambid::cli {
 namespace {
 
-void add_daemon(CLI::App& daemon, const char* name, const char* what, int (*run)(const daemons::DaemonOptions&)) {
+CLI::App* add_daemon(CLI::App& daemon, const char* name, const char* what, int (*run)(const daemons::DaemonOptions&)) {
   auto options = std::make_shared<daemons::DaemonOptions>();
   CLI::App* command = daemon.add_subcommand(name, what);
   daemons::add_daemon_options(*command, *options);
   command->callback([options, run] {
     if (const int code = run(*options); code != 0) throw CLI::RuntimeError(code);
   });
+  return command;
 }
 
 }  // namespace
@@ -29,7 +33,9 @@ void add_daemon_commands(CLI::App& app) {
   add_daemon(*daemon, "plant", "publish plant samples from a source (sim | replay | rig); swap it on command",
              daemons::run_plant_daemon);
   add_daemon(*daemon, "identifier", "identify windows of plant samples -> identified models",
-             daemons::run_identifier_daemon);
+             daemons::run_identifier_daemon)
+      ->footer("config key \"method\" (default " + std::string(ident::kDefaultWindowMethod) + "):\n" +
+               ident::method_table());
   add_daemon(*daemon, "diagnostics", "identified models -> trend store -> alerts (STALE when silent)",
              daemons::run_diagnostics_daemon);
   add_daemon(*daemon, "frf", "excitation experiment through the plant -> frequency response, ISO zone",

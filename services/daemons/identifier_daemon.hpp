@@ -6,8 +6,8 @@
 //
 // Config (JSON, every key optional):
 //   {"scenario": FILE (default: the built-in nominal amb1dof_voltage scenario),
-//    "method": "closed-loop" (identify_window.hpp; any of ident::identification_methods(),
-//    an unknown name is refused at start),
+//    "method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
+//    listed by `ambid daemon identifier --help`; an unknown name is refused at start),
 //    "window": 0.25 (s of samples per identification),
 //    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal
 //    operating point to the plant's own), "transient_samples": 0 (samples skipped at the start of every window)}

@@ -1,0 +1,46 @@
+#pragma once
+// The identification methods of identify_experiment.hpp, listed once: the dispatch and the
+// requirement checks of identify_experiment, the command-line help (`ambid identify`,
+// `ambid diagnose`, `ambid daemon identifier`), the error for an unknown name and the README's
+// method list (checked by tests/identifier/method_registry_test.cpp) are built from it.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace ambid {
+struct Experiment;
+struct Model;
+}  // namespace ambid
+
+namespace ambid::ident {
+
+struct IdentifyOptions;
+
+struct IdentificationMethod {
+  std::string name;
+  bool needs_controller = false;  // the controller that closed the loop (Experiment::controller)
+  bool needs_r = false;           // the recorded excitation r (signals.r)
+  std::vector<std::string> families;  // the plant models it is defined for; empty: any
+  std::string description;            // one line
+  // Fits `fit` (the part of the record to fit) into `model`. identify_experiment has checked
+  // the requirements above and resolved the default ARX order and Markov count in `options`.
+  void (*fit)(const Experiment& fit, const IdentifyOptions& options, Model& model) = nullptr;
+};
+
+// Every method, in the order the help and the README list them.
+const std::vector<IdentificationMethod>& method_registry();
+
+// The names of method_registry(), in its order.
+const std::vector<std::string>& identification_methods();
+
+// The method called `name`. Throws Error "WHO: unknown method 'NAME' (expected one of ...)".
+const IdentificationMethod& identification_method(const std::string& name, const std::string& who);
+
+// The names joined by `separator`: "deadbeat | deadbeat-iv | ..." for a help line.
+std::string method_names(std::string_view separator);
+
+// One line per method under a header line: name, plant models, what it needs, description.
+// The `--method` help of the commands shows it, and README.md carries it verbatim.
+std::string method_table();
+
+}  // namespace ambid::ident
