@@ -1,7 +1,7 @@
 #include "services/daemons/scenario_json.hpp"
 
 #include "core/error.hpp"
-#include "services/daemons/daemon_options.hpp"
+#include "services/daemons/config_json.hpp"
 
 namespace ambid::daemons {
 
