@@ -12,14 +12,14 @@
 #include <atomic>
 
 #include "plant_sim/scenario.hpp"
-#include "services/bus/bus.hpp"
+#include "services/bus/make_bus.hpp"
+#include "services/convert/plant_samples.hpp"
 #include "services/daemons/identify_window.hpp"
-#include "services/daemons/sample_window.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
-using ambid::daemons::sample_batch;
+using ambid::convert::sample_batch;
 
 const ambid::Experiment& record() {
   static const ambid::Experiment e = [] {
@@ -69,7 +69,7 @@ BENCHMARK(BM_BusSamples)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillis
 void BM_IdentifierWindows(benchmark::State& state) {
   const ambid::Experiment& e = record();
   ambid::sim::ScenarioOptions o;
-  ambid::daemons::SampleWindow window(ambid::sim::build_scenario(o).header, 2500);
+  ambid::convert::SampleWindow window(ambid::sim::build_scenario(o).header, 2500);
   std::uint64_t seq = 0;
   for (auto _ : state) {
     for (int k = 0; k < 5; ++k, ++seq) window.add(sample_batch(e, Eigen::Index(seq % 20) * 500, 500, "bench", seq % 20, 0.0));

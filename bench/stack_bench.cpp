@@ -1,8 +1,8 @@
 // The service end to end with the real daemons as processes (`ambid daemon identifier` and
 // `ambid daemon diagnostics`, spawned like tests/integration/stack_support.hpp does), the
 // benchmark itself playing the plant: it publishes the plant daemon's batches (500 samples,
-// sample_window.hpp) of records simulated from deploy/config/nominal-bearing.json and
-// coil1-hot.json (seed + record number, as the plant's sim source), on the loopback profile.
+// services/convert/plant_samples.hpp) of records simulated from
+// deploy/config/nominal-bearing.json and coil1-hot.json (seed + record number, as the plant's sim source), on the loopback profile.
 //   BM_PlantToIdentifier/<vendor>: sustained samples per second plant -> identifier: records
 //     of 1 s published as fast as the identifier keeps up (at most two records ahead of the
 //     models it has published, so nothing is lost to the readers' KEEP_LAST history); items =
@@ -25,15 +25,15 @@
 
 #include "integration/stack_support.hpp"
 #include "plant_sim/scenario.hpp"
-#include "services/bus/bus.hpp"
-#include "services/daemons/sample_window.hpp"
+#include "services/bus/make_bus.hpp"
+#include "services/convert/plant_samples.hpp"
 #include "services/daemons/scenario_json.hpp"
 
 namespace {
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
-using ambid::daemons::sample_batch;
+using ambid::convert::sample_batch;
 
 constexpr Eigen::Index kBatch = 500;
 constexpr int kWindowsPerRecord = 3;  // 1 s records: 0.25 s settling, three 0.25 s windows

@@ -1,7 +1,8 @@
 #pragma once
 // The bus: one DDS participant of either vendor, and typed writers and readers on it. Daemons
-// see only this header and messages.hpp; the vendor is a runtime choice (--dds fastdds|cyclone)
-// and any mix of vendors interoperates on one domain. Topics and QoS: topics.hpp, qos.hpp.
+// see only this header and messages.hpp; the vendor is a runtime choice (--dds fastdds|cyclone,
+// make_bus.hpp) and any mix of vendors interoperates on one domain. Topics and QoS: topics.hpp,
+// qos.hpp. This header needs no vendor library; make_bus.hpp links both.
 //
 //   auto bus = ambid::bus::make_bus("cyclone", 7);
 //   auto alerts = bus->writer<ambid::bus::Alert>();
@@ -32,7 +33,8 @@ inline constexpr int max_domain = 232;
 
 namespace detail {
 
-// One pair of factory functions per message type: a backend that misses one does not compile.
+// One pair of factory functions per message type of BusMessages (topics.hpp); VendorBus
+// (vendor_bus.hpp) implements them all for a backend.
 template <class Message>
 class EndpointFactory {
  public:
@@ -43,8 +45,11 @@ class EndpointFactory {
   virtual std::unique_ptr<Reader<Message>> create_reader(std::type_identity<Message>) = 0;
 };
 
+template <class List>
+class EndpointFactories;
+
 template <class... Messages>
-class EndpointFactories : public EndpointFactory<Messages>... {
+class EndpointFactories<TypeList<Messages...>> : public EndpointFactory<Messages>... {
  protected:
   using EndpointFactory<Messages>::create_writer...;
   using EndpointFactory<Messages>::create_reader...;
@@ -52,9 +57,7 @@ class EndpointFactories : public EndpointFactory<Messages>... {
 
 }  // namespace detail
 
-class Bus : public detail::EndpointFactories<PlantSamples, ExcitationCommand, PlantSourceCommand,
-                                             PlantSourceState, IdentifiedModel,
-                                             FrequencyResponse, Alert, Health> {
+class Bus : public detail::EndpointFactories<BusMessages> {
  public:
   Bus(const Bus&) = delete;
   Bus& operator=(const Bus&) = delete;
@@ -88,10 +91,5 @@ class Bus : public detail::EndpointFactories<PlantSamples, ExcitationCommand, Pl
   std::shared_ptr<Activity> activity_ = std::make_shared<Activity>();
   std::uint64_t seen_ = 0;
 };
-
-// vendor: "fastdds" or "cyclone"; domain: 0..max_domain; profile: loopback_profile or an XML
-// file (see above). Throws Error naming what was wrong.
-std::unique_ptr<Bus> make_bus(std::string_view vendor, int domain,
-                              std::string_view profile = loopback_profile);
 
 }  // namespace ambid::bus

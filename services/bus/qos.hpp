@@ -7,12 +7,11 @@
 
 namespace ambid::bus {
 
-// samples:  PlantSamples                      volatile,        deadline and liveliness
-// commands: ExcitationCommand, PlantSourceCommand  volatile (a late joiner must not act on old
-//           commands)
-// state:    PlantSourceState, IdentifiedModel, FrequencyResponse, Alert
-//           transient-local: a late subscriber gets the current state
-// health:   Health                             transient-local, deadline and liveliness
+// samples:  volatile, deadline and liveliness (plant samples)
+// commands: volatile (a late joiner must not act on old commands)
+// state:    transient-local: a late subscriber gets the current state (models, alerts, ...)
+// health:   transient-local, deadline and liveliness
+// Which message uses which profile: message_list.hpp.
 enum class Profile { samples, commands, state, health };
 
 struct Qos {

@@ -1,53 +1,37 @@
 #pragma once
-// Which topic carries which message, under which QoS profile. Topic names are the same for both
-// vendors; type names are the IDL's ("ambid::PlantSamples", ...).
+// Which topic carries which message, under which QoS profile, and the list of every message
+// type; both generated from message_list.hpp. Topic names are the same for both vendors; type
+// names are the IDL's ("ambid::PlantSamples", ...).
+#include "services/bus/message_list.hpp"
 #include "services/bus/messages.hpp"
 #include "services/bus/qos.hpp"
 
 namespace ambid::bus {
 
+template <class... Messages>
+struct TypeList {};
+
 template <class Message>
 struct Topic;
 
-template <>
-struct Topic<PlantSamples> {
-  static constexpr const char* name = "ambid/plant_samples";
-  static constexpr Profile profile = Profile::samples;
-};
-template <>
-struct Topic<ExcitationCommand> {
-  static constexpr const char* name = "ambid/excitation_command";
-  static constexpr Profile profile = Profile::commands;
-};
-template <>
-struct Topic<PlantSourceCommand> {
-  static constexpr const char* name = "ambid/plant_source_command";
-  static constexpr Profile profile = Profile::commands;
-};
-template <>
-struct Topic<PlantSourceState> {
-  static constexpr const char* name = "ambid/plant_source_state";
-  static constexpr Profile profile = Profile::state;
-};
-template <>
-struct Topic<IdentifiedModel> {
-  static constexpr const char* name = "ambid/identified_model";
-  static constexpr Profile profile = Profile::state;
-};
-template <>
-struct Topic<FrequencyResponse> {
-  static constexpr const char* name = "ambid/frequency_response";
-  static constexpr Profile profile = Profile::state;
-};
-template <>
-struct Topic<Alert> {
-  static constexpr const char* name = "ambid/alert";
-  static constexpr Profile profile = Profile::state;
-};
-template <>
-struct Topic<Health> {
-  static constexpr const char* name = "ambid/health";
-  static constexpr Profile profile = Profile::health;
-};
+#define AMBID_BUS_TOPIC(Message, topic_name, qos_profile)    \
+  template <>                                                \
+  struct Topic<Message> {                                    \
+    static constexpr const char* name = topic_name;          \
+    static constexpr Profile profile = Profile::qos_profile; \
+  };
+AMBID_BUS_MESSAGES(AMBID_BUS_TOPIC)
+#undef AMBID_BUS_TOPIC
+
+namespace detail {
+template <class First, class... Rest>
+using Tail = TypeList<Rest...>;
+}  // namespace detail
+
+// Every message type of the bus, in the order of message_list.hpp (each entry expands to
+// ", Message"; the leading void absorbs the first comma).
+#define AMBID_BUS_TYPE(Message, topic_name, qos_profile) , Message
+using BusMessages = detail::Tail<void AMBID_BUS_MESSAGES(AMBID_BUS_TYPE)>;
+#undef AMBID_BUS_TYPE
 
 }  // namespace ambid::bus

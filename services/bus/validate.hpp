@@ -3,6 +3,7 @@
 // oversized string or sequence is refused with a clear error instead of being truncated or
 // rejected somewhere on the wire (neither vendor checks bounds on write).
 #include "core/error.hpp"
+#include "services/bus/message_list.hpp"
 #include "services/bus/messages.hpp"
 
 namespace ambid::bus {
@@ -16,13 +17,8 @@ class InvalidMessage : public Error {
 // Each throws InvalidMessage when a string is longer than its bound or holds a NUL, a sequence
 // is longer than its bound, a flattened array does not match its dimensions, or an enum value
 // is out of range.
-void validate(const PlantSamples& m);
-void validate(const ExcitationCommand& m);
-void validate(const PlantSourceCommand& m);
-void validate(const PlantSourceState& m);
-void validate(const IdentifiedModel& m);
-void validate(const FrequencyResponse& m);
-void validate(const Alert& m);
-void validate(const Health& m);
+#define AMBID_BUS_VALIDATE(Message, topic_name, qos_profile) void validate(const Message& m);
+AMBID_BUS_MESSAGES(AMBID_BUS_VALIDATE)
+#undef AMBID_BUS_VALIDATE
 
 }  // namespace ambid::bus

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "core/error.hpp"
-#include "services/daemons/alert_message.hpp"
+#include "services/convert/alert.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/stop_signal.hpp"
 #include "services/cli/operator_commands.hpp"
@@ -26,7 +26,7 @@ struct AlertsArguments {
 
 void print(const bus::Alert& a) {
   std::cout << std::fixed << std::setprecision(3) << "t=" << a.time << " s  " << std::left << std::setw(5)
-            << daemons::level_name(a.level) << "  " << a.plant_id << "  " << a.parameter << "  " << a.fault;
+            << convert::level_name(a.level) << "  " << a.plant_id << "  " << a.parameter << "  " << a.fault;
   if (a.channel != 0) std::cout << " (channel " << a.channel << ")";
   std::cout << std::defaultfloat << std::setprecision(6) << "  value " << a.value;
   if (a.baseline != 0.0) std::cout << " baseline " << a.baseline;
@@ -57,7 +57,7 @@ void run(const AlertsArguments& args) {
     for (const bus::Alert& a : alerts->take()) {
       if (!args.all_plants && a.plant_id != args.bus.plant_id) continue;
       print(a);
-      if (!until_level.empty() && daemons::level_name(a.level) == until_level && a.parameter == until_parameter) return;
+      if (!until_level.empty() && convert::level_name(a.level) == until_level && a.parameter == until_parameter) return;
     }
   }
 }

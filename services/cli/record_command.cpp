@@ -7,8 +7,8 @@
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/daemons/sample_window.hpp"
 #include "services/daemons/scenario_json.hpp"
 #include "services/cli/operator_commands.hpp"
 
@@ -27,7 +27,7 @@ void run(const RecordArguments& args) {
   Experiment header = sim::build_scenario(o).header;
   header.name = "recorded " + args.bus.plant_id;
   if (!(args.duration > 0)) throw Error("--duration must be > 0 s");
-  daemons::SampleWindow window(header, Eigen::Index(std::llround(args.duration / header.sample_time)));
+  convert::SampleWindow window(header, Eigen::Index(std::llround(args.duration / header.sample_time)));
   auto bus = args.bus.connect();
   auto samples = bus->reader<bus::PlantSamples>();
   std::uint64_t rejected = 0;
@@ -38,7 +38,7 @@ void run(const RecordArguments& args) {
                   std::to_string(args.timeout) + " s");
     bus->wait(std::chrono::milliseconds(100));
     for (const auto& b : samples->take())
-      if (b.plant_id == args.bus.plant_id && window.add(b).outcome == daemons::SampleWindow::Outcome::rejected) ++rejected;
+      if (b.plant_id == args.bus.plant_id && window.add(b).outcome == convert::SampleWindow::Outcome::rejected) ++rejected;
   }
   const Experiment e = window.take();
   write_experiment(e, args.out);

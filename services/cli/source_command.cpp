@@ -5,8 +5,8 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/daemons/source_kind.hpp"
 #include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
@@ -21,7 +21,7 @@ struct SourceArguments {
 void run(const SourceArguments& args) {
   bus::PlantSourceCommand command;
   command.plant_id = args.bus.plant_id;
-  command.kind = daemons::parse_source_kind(args.kind);
+  command.kind = convert::parse_source_kind(args.kind);
   command.target = args.target;
   command.seq = std::uint64_t(std::chrono::system_clock::now().time_since_epoch().count());
   auto bus = args.bus.connect();

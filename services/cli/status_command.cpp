@@ -5,9 +5,9 @@
 #include <map>
 #include <memory>
 
-#include "services/daemons/alert_message.hpp"
+#include "services/convert/alert.hpp"
+#include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/daemons/source_kind.hpp"
 #include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
@@ -38,7 +38,7 @@ void run(const StatusArguments& args) {
     throw CLI::RuntimeError(3);
   }
   for (const auto& [id, s] : plants)
-    std::cout << "plant " << id << ": source " << daemons::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
+    std::cout << "plant " << id << ": source " << convert::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
               << " s"
               << (s.command_accepted ? (s.message.empty() ? "" : " (" + s.message + ")")
                                      : " (last command refused: " + s.message + ")")
@@ -52,7 +52,7 @@ void run(const StatusArguments& args) {
                 << zones[int(p.zone)] << "\n";
   }
   for (const auto& [node, h] : nodes)
-    std::cout << node << " (" << h.role << "): " << daemons::level_name(h.level) << " " << h.message << ", received "
+    std::cout << node << " (" << h.role << "): " << convert::level_name(h.level) << " " << h.message << ", received "
               << h.received << ", published " << h.published << ", rejected " << h.errors << ", up " << h.time
               << " s\n";
   std::cout << std::flush;

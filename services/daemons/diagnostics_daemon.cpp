@@ -8,7 +8,9 @@
 
 #include "core/error.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
-#include "services/daemons/alert_message.hpp"
+#include "services/convert/alert.hpp"
+#include "services/convert/identified_model.hpp"
+#include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 
 namespace ambid::daemons {
@@ -55,7 +57,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
                                                       {{"level", std::string(diag::to_string(level))}});
   auto publish = [&](const std::vector<diag::Alert>& raised) {
     for (const diag::Alert& a : raised) {
-      alerts->write(to_message(a));
+      alerts->write(convert::to_message(a));
       runtime.metrics.published.Increment();
       alerts_by_level.at(a.level)->Increment();
       runtime.log(std::string(diag::to_string(a.level)) + " " + a.parameter + ": " + a.message);
@@ -68,13 +70,13 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : sources->take())
-      if (s.plant_id == options.plant_id) source = to_source(s.kind);
+      if (s.plant_id == options.plant_id) source = convert::to_source(s.kind);
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
       if (last_time && m.time <= *last_time) continue;  // already processed (a late-joiner replay)
       try {
-        publish(engine.process(estimate_window(m, source)));
+        publish(engine.process(convert::estimate_window(m, source)));
         last_time = m.time;
         last_model = std::chrono::steady_clock::now();
         stale = false;

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "services/convert/frequency_response.hpp"
+#include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_runtime.hpp"
-#include "services/daemons/frf_message.hpp"
-#include "services/daemons/sample_window.hpp"
 #include "services/daemons/scenario_json.hpp"
 
 namespace ambid::daemons {
@@ -59,7 +59,7 @@ int run_frf_daemon(const DaemonOptions& options) {
   bool scheduled = true;  // another experiment is due at next_experiment
   bool commanded = false;
   int records_started = 0;  // the excitation is asked for; the next record of the plant is ours
-  std::optional<SampleWindow> window;
+  std::optional<convert::SampleWindow> window;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     if (!commanded && scheduled && std::chrono::steady_clock::now() >= next_experiment && commands->matched()) {
@@ -78,7 +78,7 @@ int run_frf_daemon(const DaemonOptions& options) {
       // took it; the one after is surely excited.
       if (b.seq == 0 && ++records_started == 2) window.emplace(scenario.header, record_samples);
       if (!window) continue;
-      if (window->add(b).outcome == SampleWindow::Outcome::rejected) runtime.metrics.rejected.Increment();
+      if (window->add(b).outcome == convert::SampleWindow::Outcome::rejected) runtime.metrics.rejected.Increment();
       if (!window->full()) continue;
       Experiment e = window->take();
       commanded = false;
@@ -89,7 +89,7 @@ int run_frf_daemon(const DaemonOptions& options) {
       next_experiment = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                                std::chrono::duration<double>(config.interval));
       try {
-        responses->write(to_message(ident::analyse_frf(e), options.plant_id, seq, e.t(e.samples() - 1)));
+        responses->write(convert::to_message(ident::analyse_frf(e), options.plant_id, seq, e.t(e.samples() - 1)));
         runtime.metrics.published.Increment();
         runtime.log("frequency response of the record ending at " + std::to_string(e.t(e.samples() - 1)) + " s");
       } catch (const Error& err) {

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
-#include "services/daemons/sample_window.hpp"
 #include "services/daemons/scenario_json.hpp"
 
 namespace ambid::daemons {
@@ -41,8 +41,8 @@ int run_identifier_daemon(const DaemonOptions& options) {
   const IdentifierConfig config = identifier_config(load_config(options.config));
   const sim::Scenario scenario = sim::build_scenario(config.scenario);
   const auto window_samples = Eigen::Index(std::llround(config.window / scenario.header.sample_time));
-  SampleWindow window(scenario.header, window_samples,
-                      Eigen::Index(std::llround(config.settle / scenario.header.sample_time)));
+  convert::SampleWindow window(scenario.header, window_samples,
+                               Eigen::Index(std::llround(config.settle / scenario.header.sample_time)));
 
   auto bus = options.connect();
   DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
@@ -72,13 +72,13 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
       const Eigen::Index buffered = window.buffered();
-      const SampleWindow::Result r = window.add(batch);
-      if (r.outcome == SampleWindow::Outcome::rejected) {
+      const convert::SampleWindow::Result r = window.add(batch);
+      if (r.outcome == convert::SampleWindow::Outcome::rejected) {
         runtime.metrics.rejected.Increment();
         dropped_rejected.Increment(double(batch.count));
         runtime.log("batch " + std::to_string(batch.seq) + " rejected: " + r.reason);
         runtime.set_health(bus::AlertLevel::warn, "samples rejected: " + r.reason);
-      } else if (r.outcome == SampleWindow::Outcome::restarted && buffered > 0) {
+      } else if (r.outcome == convert::SampleWindow::Outcome::restarted && buffered > 0) {
         (batch.seq == 0 ? dropped_record_end : dropped_gap).Increment(double(buffered));
         if (batch.seq != 0) runtime.log(std::to_string(buffered) + " samples dropped: " + r.reason);
       }

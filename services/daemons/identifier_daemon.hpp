@@ -1,5 +1,5 @@
 #pragma once
-// `ambid daemon identifier`: collects the plant's samples into windows (sample_window.hpp) and
+// `ambid daemon identifier`: collects the plant's samples into windows (services/convert/plant_samples.hpp) and
 // publishes the identified model of each (identify_window.hpp). It needs the plant's nominal
 // description and controller, which are not on the bus: they come from the scenario file the
 // plant runs under (the nominal one; its true_parameters are ignored).

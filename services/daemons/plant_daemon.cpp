@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "services/convert/plant_samples.hpp"
+#include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/plant_source.hpp"
-#include "services/daemons/sample_window.hpp"
-#include "services/daemons/source_kind.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -28,7 +28,7 @@ PlantConfig plant_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency",
                                       "rig_silence", "rig_reply_timeout", "rig_allow_remote"});
   PlantConfig c;
-  c.kind = parse_source_kind(config_value<std::string>(j, "source", "sim"));
+  c.kind = convert::parse_source_kind(config_value<std::string>(j, "source", "sim"));
   c.target = config_value<std::string>(j, "target", "");
   c.batch_samples = config_value(j, "batch_samples", 500);
   c.speed = config_value(j, "speed", c.speed);
@@ -71,7 +71,7 @@ class PlantDaemon {
 
   int run() {
     announce(0, true, "started");
-    runtime_.ready(std::string(source_kind_name(source_->kind())) + " " + source_->target());
+    runtime_.ready(std::string(convert::source_kind_name(source_->kind())) + " " + source_->target());
     while (runtime_.running()) {
       handle_commands();
       if (auto c = source_->condition_change()) {
@@ -105,7 +105,7 @@ class PlantDaemon {
       }
     }
     const Eigen::Index count = std::min(config_.batch_samples, record_.samples() - row_);
-    samples_->write(sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
+    samples_->write(convert::sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
     runtime_.metrics.published.Increment();
     row_ += count;
     clock_ = record_.t(row_ - 1) + record_offset_ + record_.sample_time;
@@ -123,7 +123,7 @@ class PlantDaemon {
         pace_clock_ = clock_;
         announce(c.seq, true, "source swapped");
         // A new source ends the WARN of a silent rig.
-        runtime_.set_health(bus::AlertLevel::ok, "source " + std::string(source_kind_name(c.kind)) + " " + c.target);
+        runtime_.set_health(bus::AlertLevel::ok, "source " + std::string(convert::source_kind_name(c.kind)) + " " + c.target);
       } catch (const Error& e) {
         runtime_.metrics.rejected.Increment();
         announce(c.seq, false, e.what());

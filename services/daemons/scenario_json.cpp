@@ -3,7 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "services/daemons/daemon_options.hpp"
+#include "services/daemons/config_json.hpp"
 
 namespace ambid::daemons {
 

@@ -6,9 +6,12 @@
 
 #include "core/error.hpp"
 #include "plant_sim/scenario.hpp"
-#include "services/daemons/sample_window.hpp"
+#include "services/convert/plant_samples.hpp"
 
 namespace ambid::daemons {
+using convert::sample_batch;
+using convert::SampleWindow;
+
 namespace {
 
 double physical(const bus::IdentifiedModel& m, const std::string& name) {

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "dds/messages.hpp"
-#include "services/bus/bus.hpp"
+#include "services/bus/make_bus.hpp"
 
 namespace ambid::bus::test {
 

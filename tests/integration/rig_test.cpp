@@ -18,7 +18,7 @@
 
 #include "core/experiment_io.hpp"
 #include "plant_sim/scenario.hpp"
-#include "services/bus/bus.hpp"
+#include "services/bus/make_bus.hpp"
 #include "services/daemons/scenario_json.hpp"
 #include "stack_support.hpp"
 

@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "plant_sim/scenario.hpp"
-#include "services/bus/bus.hpp"
+#include "services/bus/make_bus.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {

@@ -1,6 +1,6 @@
 #pragma once
-// The Cyclone DDS backend (C API). No Cyclone header here: bus.cpp includes this and the
-// Fast DDS backend's header in one translation unit.
+// The Cyclone DDS backend (C API), library ambid_bus_cyclone. No Cyclone header here:
+// make_bus.cpp includes this and the Fast DDS backend's header in one translation unit.
 #include <memory>
 #include <string_view>
 

@@ -1,6 +1,6 @@
 #pragma once
-// The Fast DDS backend (C++ API). No Fast DDS header here: bus.cpp includes this and the
-// Cyclone backend's header in one translation unit.
+// The Fast DDS backend (C++ API), library ambid_bus_fastdds. No Fast DDS header here:
+// make_bus.cpp includes this and the Cyclone backend's header in one translation unit.
 #include <memory>
 #include <string_view>
 

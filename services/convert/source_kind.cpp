@@ -1,8 +1,8 @@
-#include "services/daemons/source_kind.hpp"
+#include "services/convert/source_kind.hpp"
 
 #include "core/error.hpp"
 
-namespace ambid::daemons {
+namespace ambid::convert {
 
 bus::SourceKind parse_source_kind(const std::string& text) {
   if (text == "sim") return bus::SourceKind::sim;
@@ -23,4 +23,16 @@ std::string_view source_kind_name(bus::SourceKind kind) {
   return "sim";
 }
 
-}  // namespace ambid::daemons
+diag::Source to_source(bus::SourceKind kind) {
+  switch (kind) {
+    case bus::SourceKind::replay:
+      return diag::Source::replay;
+    case bus::SourceKind::rig:
+      return diag::Source::rig;
+    case bus::SourceKind::sim:
+      break;
+  }
+  return diag::Source::sim;
+}
+
+}  // namespace ambid::convert

@@ -15,7 +15,7 @@
 #include "core/experiment.hpp"
 #include "services/bus/messages.hpp"
 
-namespace ambid::daemons {
+namespace ambid::convert {
 
 // Rows [begin, begin + count) of `e` as one message; times shifted by `time_offset`.
 bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::Index count,
@@ -56,4 +56,4 @@ class SampleWindow {
   bool started_ = false;
 };
 
-}  // namespace ambid::daemons
+}  // namespace ambid::convert

@@ -1,11 +1,11 @@
-#include "services/daemons/sample_window.hpp"
+#include "services/convert/plant_samples.hpp"
 
 #include <cmath>
 #include <sstream>
 
 #include "core/error.hpp"
 
-namespace ambid::daemons {
+namespace ambid::convert {
 namespace {
 
 void append_rows(const Eigen::MatrixXd& m, Eigen::Index begin, Eigen::Index count, std::vector<double>& out) {
@@ -116,4 +116,4 @@ void SampleWindow::clear() {
   started_ = false;
 }
 
-}  // namespace ambid::daemons
+}  // namespace ambid::convert

@@ -1,10 +1,10 @@
-#include "services/daemons/frf_message.hpp"
+#include "services/convert/frequency_response.hpp"
 
 #include <algorithm>
 
 #include "core/error.hpp"
 
-namespace ambid::daemons {
+namespace ambid::convert {
 namespace {
 
 bus::IsoZone to_message(ident::IsoZone zone) {
@@ -54,4 +54,4 @@ bus::FrequencyResponse to_message(const ident::FrfReport& report, const std::str
   return m;
 }
 
-}  // namespace ambid::daemons
+}  // namespace ambid::convert

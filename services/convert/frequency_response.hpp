@@ -8,10 +8,10 @@
 #include "identifier/frf_analysis.hpp"
 #include "services/bus/messages.hpp"
 
-namespace ambid::daemons {
+namespace ambid::convert {
 
 // Throws Error when the FRF has more lines or values than the message bounds allow.
 bus::FrequencyResponse to_message(const ident::FrfReport& report, const std::string& plant_id, std::uint64_t seq,
                                   double time);
 
-}  // namespace ambid::daemons
+}  // namespace ambid::convert
