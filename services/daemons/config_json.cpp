@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 
 namespace ambid::daemons {

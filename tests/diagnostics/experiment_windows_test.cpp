@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
-#include "identifier/families/amb1dof_deadbeat.hpp"
+#include "identifier/identify_window.hpp"
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
@@ -59,7 +59,7 @@ TEST(SplitExperiment, LaterWindowIdentifiesTheNominalPlant) {
   o.duration = 0.5;
   o.amplitude = 1.0;
   const std::vector<Experiment> windows = split_experiment(sim::simulate_scenario(o), 2500);
-  const auto id = ident::identify_amb1dof_deadbeat(windows.back());
+  const Model id = ident::identify_window(windows.back(), ident::window_identify_options("deadbeat")).model;
   EXPECT_NEAR(id.physical.at("R1"), 17.5, 0.02 * 17.5);
   EXPECT_NEAR(id.physical.at("kw2"), 1.0, 0.01);
 }
