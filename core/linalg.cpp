@@ -121,6 +121,11 @@ Eigen::MatrixXd qr_r(const Eigen::MatrixXd& A) {
   return qr.matrixQR().topRows(std::min(A.rows(), A.cols())).triangularView<Eigen::Upper>();
 }
 
+Eigen::MatrixXd qr_q(const Eigen::MatrixXd& A) {
+  require_square(A, "qr_q");
+  return Eigen::HouseholderQR<Eigen::MatrixXd>(A).householderQ();
+}
+
 Eigen::MatrixXd qr_inverse_gram(const Eigen::MatrixXd& J, double threshold) {
   const Eigen::Index p = J.cols();
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);

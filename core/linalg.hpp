@@ -72,6 +72,8 @@ RankedSolution<Eigen::MatrixXcd> qr_solve(const Eigen::MatrixXcd& A, const Eigen
                                           double threshold = kDefaultThreshold);
 // R of A = Q R by Householder QR without pivoting: the min(rows, cols) x cols upper trapezoid.
 Eigen::MatrixXd qr_r(const Eigen::MatrixXd& A);
+// Q of a square A = Q R by Householder QR without pivoting (an orthogonal matrix).
+Eigen::MatrixXd qr_q(const Eigen::MatrixXd& A);
 // (J^T J)^-1 = P R^-1 R^-T P^T from J P = Q R without forming J^T J; empty when rank(J) < cols.
 Eigen::MatrixXd qr_inverse_gram(const Eigen::MatrixXd& J, double threshold = kDefaultThreshold);
 // Orthonormal basis (columns) of the null space of A: the full-pivoting LU kernel,

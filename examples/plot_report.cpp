@@ -18,11 +18,17 @@ int main(int argc, char** argv) {
     magnitude.push_back(-10.0 * std::log10(1.0 + (hz / 50.0) * (hz / 50.0)));
     phase.push_back(-std::atan(hz / 50.0) * 180.0 / M_PI);
   }
-  ambid::report::Figure figure{.title = "First-order lag", .share_x = true};
-  figure.axes.push_back({.title = "", .x_label = "", .y_label = "magnitude (dB)", .log_x = true,
-                         .series = {ambid::report::line("|G|", f, magnitude)}});
-  figure.axes.push_back({.x_label = "frequency (Hz)", .y_label = "phase (deg)", .log_x = true,
-                         .series = {ambid::report::line("arg G", f, phase)}});
+  ambid::report::Figure figure;
+  figure.title = "First-order lag";
+  figure.share_x = true;
+  ambid::report::Axes bode_magnitude, bode_phase;
+  bode_magnitude.y_label = "magnitude (dB)";
+  bode_phase.x_label = "frequency (Hz)";
+  bode_phase.y_label = "phase (deg)";
+  bode_magnitude.log_x = bode_phase.log_x = true;
+  bode_magnitude.series = {ambid::report::line("|G|", f, magnitude)};
+  bode_phase.series = {ambid::report::line("arg G", f, phase)};
+  figure.axes = {bode_magnitude, bode_phase};
   ambid::report::write_file_atomically(argv[1], ambid::report::render_svg(figure));
   std::cout << "wrote " << argv[1] << "\n";
 }

@@ -10,6 +10,7 @@ packages=(
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
   libsystemd-dev prometheus-cpp-dev
   iproute2 procps libxml2-utils
+  clang-format  # the style check (scripts/check-format.sh)
   chromium  # headless rendering test of the HTML audit report
 )
 

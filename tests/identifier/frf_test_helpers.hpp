@@ -12,8 +12,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
+#include "core/linalg.hpp"
 #include "core/experiment.hpp"
 #include "core/state_space.hpp"
 #include "identifier/frequency_domain/frf_loop.hpp"
@@ -166,7 +167,7 @@ inline double closed_loop_radius(const DiscreteSystem& plant, const StateSpaceCo
   const Eigen::Index n = plant.states(), nc = K.states();
   Eigen::MatrixXd A(n + nc, n + nc);
   A << plant.A + plant.B * K.D * plant.C, plant.B * K.C, K.B * plant.C, K.A;
-  return A.eigenvalues().cwiseAbs().maxCoeff();
+  return linalg::spectral_radius(A);
 }
 
 // For RecordProperty of small numbers (std::to_string prints 6 decimals only).

@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
+
+#include "core/linalg.hpp"
 
 namespace ambid::ident::testing {
 
@@ -43,10 +45,9 @@ inline Eigen::MatrixXd matrix_with_eigenvalues(const std::vector<std::complex<do
     }
   }
   // T = Q (I + 0.3 G): orthogonal times a moderate perturbation, condition number a few.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(random_matrix(n, n, rng));
-  const Eigen::MatrixXd Q = qr.householderQ();
+  const Eigen::MatrixXd Q = linalg::qr_q(random_matrix(n, n, rng));
   const Eigen::MatrixXd T = Q * (Eigen::MatrixXd::Identity(n, n) + 0.3 * random_matrix(n, n, rng) / std::sqrt(double(n)));
-  return T * J * T.inverse();
+  return T * J * linalg::inverse(T);
 }
 
 // Three significant digits in scientific notation (for RecordProperty).
@@ -57,7 +58,7 @@ inline std::string sci(double v) {
   return s.str();
 }
 
-inline double spectral_radius(const Eigen::MatrixXd& A) { return A.eigenvalues().cwiseAbs().maxCoeff(); }
+inline double spectral_radius(const Eigen::MatrixXd& A) { return linalg::spectral_radius(A); }
 
 // The scale s > 0 at which spectral_radius(A0 + s M) = target, by bisection from s = 0
 // (requires spectral_radius(A0) < target).
@@ -73,7 +74,7 @@ inline double scale_to_radius(const Eigen::MatrixXd& A0, const Eigen::MatrixXd& 
 
 // Eigenvalues sorted by (real, imag) for comparison.
 inline std::vector<std::complex<double>> sorted_eigenvalues(const Eigen::MatrixXd& A) {
-  const Eigen::VectorXcd e = A.eigenvalues();
+  const Eigen::VectorXcd e = linalg::eigenvalues(A);
   std::vector<std::complex<double>> v(e.data(), e.data() + e.size());
   std::sort(v.begin(), v.end(), [](const auto& a, const auto& b) {
     if (std::abs(a.real() - b.real()) > 1e-6) return a.real() < b.real();
@@ -120,13 +121,13 @@ inline Eigen::MatrixXd lqr_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd&
   Eigen::MatrixXd X = Q;
   for (int it = 0; it < 20000; ++it) {
     const Eigen::MatrixXd S = R + B.transpose() * X * B;
-    const Eigen::MatrixXd K = S.ldlt().solve(B.transpose() * X * A);
+    const Eigen::MatrixXd K = linalg::ldlt_solve(S, B.transpose() * X * A);
     const Eigen::MatrixXd Xn = A.transpose() * X * (A - B * K) + Q;
     const double d = (Xn - X).norm();
     X = 0.5 * (Xn + Xn.transpose());
     if (d <= 1e-14 * X.norm()) break;
   }
-  return (R + B.transpose() * X * B).ldlt().solve(B.transpose() * X * A);
+  return linalg::ldlt_solve(R + B.transpose() * X * B, B.transpose() * X * A);
 }
 
 // Plant x[k+1] = A x + B u + G e + w, y = C x + D u + e (innovation form when w = 0).

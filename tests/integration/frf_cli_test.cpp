@@ -10,10 +10,11 @@
 #include <fstream>
 #include <numbers>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "core/linalg.hpp"
 #include "core/state_space.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 
@@ -30,7 +31,7 @@ Eigen::MatrixXcd sampled_linear_plant(double f, double T) {
   const DiscreteSystem d = c2d_zoh(sim::Amb1dofVoltage().linearize(), T);
   const std::complex<double> z = std::exp(std::complex<double>(0.0, 2.0 * std::numbers::pi * f * T));
   const Eigen::MatrixXcd resolvent = z * Eigen::MatrixXcd::Identity(d.A.rows(), d.A.cols()) - d.A.cast<std::complex<double>>();
-  return d.C.cast<std::complex<double>>() * resolvent.partialPivLu().solve(d.B.cast<std::complex<double>>()) +
+  return d.C.cast<std::complex<double>>() * linalg::lu_solve(resolvent, d.B.cast<std::complex<double>>()).x +
          d.D.cast<std::complex<double>>();
 }
 

@@ -4,8 +4,9 @@
 #include <random>
 #include <string>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
+#include "core/linalg.hpp"
 #include "core/error.hpp"
 #include "plant_sim/dare.hpp"
 #include "plant_sim/lqr.hpp"
@@ -42,7 +43,7 @@ Eigen::MatrixXd riccati_recursion(const Eigen::MatrixXd& A, const Eigen::MatrixX
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(A.rows(), A.rows());
   for (int k = 0; k < 2000; ++k) {
     const Eigen::MatrixXd cross = A.transpose() * X * B + N;
-    const Eigen::MatrixXd gain = (R + B.transpose() * X * B).inverse() * cross.transpose();
+    const Eigen::MatrixXd gain = linalg::inverse(R + B.transpose() * X * B) * cross.transpose();
     const Eigen::MatrixXd next = A.transpose() * X * A - cross * gain + Q;
     X = 0.5 * (next + next.transpose());  // unsymmetrised, rounding grows in the skew part
   }
@@ -74,7 +75,7 @@ TEST(Dare, RandomMimoResidualAndStability) {
     const LqrGain g = dlqr(A, B, Q, R);
     EXPECT_LT(relative_residual(A, B, Q, R, g.X), 1e-10) << "trial " << trial;
     EXPECT_LT((g.X - g.X.transpose()).norm(), 1e-10 * g.X.norm());
-    EXPECT_GE(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(g.X).eigenvalues().minCoeff(),
+    EXPECT_GE(linalg::symmetric_eigenvalues(g.X).minCoeff(),
               -1e-9 * g.X.norm());
     EXPECT_LT(g.closed_loop_poles.cwiseAbs().maxCoeff(), 1.0);
   }
@@ -154,7 +155,7 @@ TEST(Dare, PredictorGainIsDualAndSatisfiesFilterRiccati) {
   EXPECT_LT(o.observer_poles.cwiseAbs().maxCoeff(), 1.0);
   // P = A P A' + W - A P C' (V + C P C')^{-1} C P A',  L = A P C' (V + C P C')^{-1}
   EXPECT_LT(relative_residual(A.transpose(), C.transpose(), W, V, o.P), 1e-10);
-  const Eigen::MatrixXd L = A * o.P * C.transpose() * (V + C * o.P * C.transpose()).inverse();
+  const Eigen::MatrixXd L = A * o.P * C.transpose() * linalg::inverse(V + C * o.P * C.transpose());
   EXPECT_LT((L - o.L).norm(), 1e-12 * L.norm());
 }
 

@@ -5,10 +5,11 @@
 #include <complex>
 #include <numbers>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/linalg.hpp"
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/effects.hpp"
@@ -210,7 +211,7 @@ TEST(Effects, FlexibleModeAddsItsPolePair) {
   LinearizeOptions lo;
   lo.state_scale = (Eigen::VectorXd(6) << p.x0, p.x0 * 1e3, p.i0, p.i0, 1e-6, 1e-3).finished();
   lo.input_scale = plant.equilibrium_input();
-  const Eigen::VectorXcd poles = linearize(plant, lo).A.eigenvalues();
+  const Eigen::VectorXcd poles = linalg::eigenvalues(linearize(plant, lo).A);
   const std::complex<double> expected(-zeta * w, w * std::sqrt(1 - zeta * zeta));
   double closest = INFINITY;
   for (const auto& s : poles) closest = std::min(closest, std::abs(s - expected));

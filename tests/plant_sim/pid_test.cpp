@@ -5,8 +5,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
+#include "core/linalg.hpp"
 #include "core/error.hpp"
 #include "plant_sim/observer_controller.hpp"
 #include "plant_sim/pid.hpp"
@@ -115,7 +116,7 @@ TEST(LeadLag, CascadeFrequencyResponseIsTheWarpedContinuousOne) {
     const Eigen::MatrixXcd zI = z * Eigen::MatrixXcd::Identity(3, 3);
     const Eigen::MatrixXcd H =
         c.C.cast<std::complex<double>>() *
-            (zI - c.A.cast<std::complex<double>>()).inverse() * c.B.cast<std::complex<double>>() +
+            linalg::lu_solve(zI - c.A.cast<std::complex<double>>(), c.B.cast<std::complex<double>>()).x +
         c.D.cast<std::complex<double>>();
     EXPECT_LT(std::abs(H(0, 0) - expected), 1e-10 * std::abs(expected)) << "w = " << w;
     EXPECT_LT(std::abs(H(1, 0) + 0.5 * expected), 1e-10 * std::abs(expected)) << "w = " << w;
