@@ -72,7 +72,8 @@ void BM_IdentifierWindows(benchmark::State& state) {
   ambid::convert::SampleWindow window(ambid::sim::build_scenario(o).header, 2500);
   std::uint64_t seq = 0;
   for (auto _ : state) {
-    for (int k = 0; k < 5; ++k, ++seq) window.add(sample_batch(e, Eigen::Index(seq % 20) * 500, 500, "bench", seq % 20, 0.0));
+    for (int k = 0; k < 5; ++k, ++seq)
+      window.add(sample_batch(e, Eigen::Index(seq % 20) * 500, 500, "bench", seq % 20, 0.0));
     while (window.full()) benchmark::DoNotOptimize(ambid::daemons::identify_window(window.take(), "bench", seq));
   }
   state.SetItemsProcessed(std::int64_t(seq) * 500);

@@ -4,8 +4,8 @@
 // for the default scenario (LQR observer controller, PRBS excitation) with and without
 // noise. Target: >= 1000 at the runner's default sub-steps (kDefaultSubsteps).
 #include <benchmark/benchmark.h>
-#include <chrono>
 #include <malloc.h>
+#include <chrono>
 
 #include "plant_sim/integrator.hpp"
 #include "plant_sim/scenario.hpp"

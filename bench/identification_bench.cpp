@@ -8,8 +8,8 @@
 
 #include <map>
 
-#include "identifier/time_domain/arx.hpp"
 #include "identifier/identify_experiment.hpp"
+#include "identifier/time_domain/arx.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
 #include "plant_sim/scenario.hpp"
 
@@ -65,9 +65,7 @@ void BM_FitArx(benchmark::State& state) {
 // Arguments: {samples, ARX order (0: the method's default / not used)}.
 BENCHMARK(BM_Deadbeat)->Args({10000, 0})->Args({100000, 0})->Args({1000000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_DeadbeatIv)->Args({10000, 0})->Args({100000, 0})->Args({1000000, 0})->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_ClosedLoop)
-    ->ArgsProduct({{10000, 100000, 1000000}, {4, 8, 16}})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClosedLoop)->ArgsProduct({{10000, 100000, 1000000}, {4, 8, 16}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Projection)->ArgsProduct({{10000, 100000}, {4, 8, 16}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Pem)->Args({10000, 0})->Args({30000, 0})->Args({100000, 0})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FitArx)->ArgsProduct({{10000, 100000, 1000000}, {4, 8, 16, 32}})->Unit(benchmark::kMillisecond);

@@ -2,7 +2,8 @@
 // `ambid daemon diagnostics`, spawned like tests/integration/stack_support.hpp does), the
 // benchmark itself playing the plant: it publishes the plant daemon's batches (500 samples,
 // services/convert/plant_samples.hpp) of records simulated from
-// deploy/config/nominal-bearing.json and coil1-hot.json (seed + record number, as the plant's sim source), on the loopback profile.
+// deploy/config/nominal-bearing.json and coil1-hot.json (seed + record number, as the plant's sim source), on the
+// loopback profile.
 //   BM_PlantToIdentifier/<vendor>: sustained samples per second plant -> identifier: records
 //     of 1 s published as fast as the identifier keeps up (at most two records ahead of the
 //     models it has published, so nothing is lost to the readers' KEEP_LAST history); items =
@@ -162,7 +163,8 @@ void BM_SampleToAlert(benchmark::State& state) {
     // Waits on the bus (alerts taken as they arrive) until the plant clock is due.
     const auto start = Clock::now();
     auto paced = [&] {
-      const auto due = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(plant.clock() / speed));
+      const auto due =
+          start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(plant.clock() / speed));
       for (auto now = Clock::now(); now < due; now = Clock::now()) {
         bus->wait(1ms);
         poll_alerts();

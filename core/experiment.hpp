@@ -37,8 +37,8 @@ struct StateSpaceController {
 };
 
 struct PlantDescription {
-  std::string model;                          // e.g. "amb1dof_voltage"
-  std::map<std::string, double> parameters;   // nominal values the model believes
+  std::string model;                         // e.g. "amb1dof_voltage"
+  std::map<std::string, double> parameters;  // nominal values the model believes
 };
 
 // Sampling is uniform when every step t[k] - t[k-1] is within this fraction of sample_time.
@@ -58,7 +58,7 @@ struct Experiment {
   std::map<std::string, double> operating_point;
   std::optional<StateSpaceController> controller;
 
-  Eigen::VectorXd t;     // seconds, one entry per sample
+  Eigen::VectorXd t;        // seconds, one entry per sample
   Eigen::MatrixXd y, u, r;  // samples x signals, absolute values, columns in *_names order
 
   // Unknown sidecar keys, kept so a rewrite loses nothing. Mirrors the sidecar: top-level

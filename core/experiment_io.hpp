@@ -21,8 +21,8 @@ struct ReadOptions {
 };
 
 struct ReadResult {
-  Experiment experiment;                // passes Experiment::validate()
-  std::vector<std::string> warnings;    // each names its file
+  Experiment experiment;              // passes Experiment::validate()
+  std::vector<std::string> warnings;  // each names its file
 };
 
 // `path` may name the .json sidecar, the .csv, or the stem without extension.

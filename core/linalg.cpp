@@ -78,7 +78,9 @@ Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& A) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
-Eigen::VectorXd singular_values(const Eigen::MatrixXd& A) { return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues(); }
+Eigen::VectorXd singular_values(const Eigen::MatrixXd& A) {
+  return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
+}
 
 Eigen::VectorXd singular_values(const Eigen::MatrixXcd& A) {
   return Eigen::JacobiSVD<Eigen::MatrixXcd>(A).singularValues();

@@ -37,8 +37,7 @@ ContinuousSystem d2c_zoh(const DiscreteSystem& sys);
 
 // Simulates the discrete system from state x0. `u` has one row per sample, one column per
 // input; the result has one row per sample, one column per output.
-Eigen::MatrixXd simulate(const DiscreteSystem& sys, const Eigen::MatrixXd& u,
-                         const Eigen::VectorXd& x0);
+Eigen::MatrixXd simulate(const DiscreteSystem& sys, const Eigen::MatrixXd& u, const Eigen::VectorXd& x0);
 Eigen::MatrixXd simulate(const DiscreteSystem& sys, const Eigen::MatrixXd& u);
 
 // Continuous and discrete poles.

@@ -20,12 +20,12 @@ struct Alert {
   double time = 0.0;  // seconds, time of the estimate window (or the staleness check) that raised it
   std::string plant_id;
   Level level = Level::ok;
-  std::string fault;             // effect vocabulary name (fault_isolation.hpp)
-  std::optional<int> channel;    // 1-based coil/amplifier; empty for both channels or none
-  std::string parameter;         // the physical parameter the alert is about: R1, kw1, ...
-  double value = 0.0;            // its current level (estimate of the changed value)
+  std::string fault;               // effect vocabulary name (fault_isolation.hpp)
+  std::optional<int> channel;      // 1-based coil/amplifier; empty for both channels or none
+  std::string parameter;           // the physical parameter the alert is about: R1, kw1, ...
+  double value = 0.0;              // its current level (estimate of the changed value)
   std::optional<double> baseline;  // empty while the baseline is still being learned
-  std::string message;           // e.g. "coil 1 resistance 20 % above baseline (step)"
+  std::string message;             // e.g. "coil 1 resistance 20 % above baseline (step)"
 
   bool operator==(const Alert&) const = default;
 };

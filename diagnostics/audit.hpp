@@ -44,26 +44,26 @@ namespace ambid::diag {
 struct AuditOptions {
   double estimation_fraction = 0.5;
   int fitted_candidates = 5;
-  double complexity_penalty = 0.02;  // relative score penalty per fitted parameter (ranking)
-  double false_acceptance = 0.01;    // P(a cause is named | the nominal model is right)
+  double complexity_penalty = 0.02;     // relative score penalty per fitted parameter (ranking)
+  double false_acceptance = 0.01;       // P(a cause is named | the nominal model is right)
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
   FitOptions fit;
 };
 
 struct AuditFinding {
-  sim::Effect effect;             // fitted; channel 0 means none (null in audit.json)
-  Eigen::VectorXd nrmse_after;    // per output, validation segment
+  sim::Effect effect;           // fitted; channel 0 means none (null in audit.json)
+  Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
-  double score = 0.0;             // nrmse_total_after with the complexity penalty
-  ImprovementTest test;           // validation improvement against noise
+  double score = 0.0;    // nrmse_total_after with the complexity penalty
+  ImprovementTest test;  // validation improvement against noise
   bool accepted = false;
   std::string evidence;
 };
 
 struct AuditResult {
   std::vector<std::string> outputs, inputs;
-  Eigen::VectorXd baseline_nrmse;  // nominal model, validation segment
-  double baseline_total = 0.0;     // mean of the per-output NRMSE
+  Eigen::VectorXd baseline_nrmse;      // nominal model, validation segment
+  double baseline_total = 0.0;         // mean of the per-output NRMSE
   std::vector<AuditFinding> findings;  // fitted candidates, best score first
   std::string cause = "none";
   double false_acceptance = 0.0;  // AuditOptions::false_acceptance

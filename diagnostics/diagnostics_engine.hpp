@@ -19,8 +19,8 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/monitor/alert_policy.hpp"
 #include "diagnostics/fault_isolation.hpp"
+#include "diagnostics/monitor/alert_policy.hpp"
 #include "diagnostics/monitor/series_monitor.hpp"
 #include "diagnostics/trend_store.hpp"
 
@@ -52,8 +52,7 @@ class DiagnosticsEngine {
 
   // Gives a baseline explicitly (stored at once, stamped `time`); detection of the parameter
   // starts again from it.
-  void set_baseline(const std::string& plant_id, const std::string& parameter, const Baseline& baseline,
-                    double time);
+  void set_baseline(const std::string& plant_id, const std::string& parameter, const Baseline& baseline, double time);
 
   // The current level of a parameter; Error when the engine has not seen it.
   Level level(const std::string& plant_id, const std::string& parameter) const;

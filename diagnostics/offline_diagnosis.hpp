@@ -11,14 +11,14 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/monitor/baseline.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/estimate.hpp"
+#include "diagnostics/monitor/baseline.hpp"
 
 namespace ambid::diag {
 
 struct OfflineDiagnosis {
-  std::vector<Alert> alerts;  // every alert raised, in time order
+  std::vector<Alert> alerts;                        // every alert raised, in time order
   using Key = std::pair<std::string, std::string>;  // plant id, parameter
   std::map<Key, Baseline> baselines;
   std::map<Key, Level> final_levels;  // the level of each parameter after the last window

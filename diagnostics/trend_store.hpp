@@ -26,8 +26,8 @@
 #include <vector>
 
 #include "diagnostics/alert.hpp"
-#include "diagnostics/monitor/baseline.hpp"
 #include "diagnostics/estimate.hpp"
+#include "diagnostics/monitor/baseline.hpp"
 
 namespace ambid::diag {
 

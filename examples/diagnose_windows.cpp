@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   }
   ambid::diag::TrendStore store(argv[1]);
   ambid::diag::DiagnosticsEngine engine(store);
-  const std::map<std::string, double> nominal{{"R1", 17.5}, {"R2", 17.5}, {"kw1", 50.0}, {"kw2", 50.0},
+  const std::map<std::string, double> nominal{{"R1", 17.5},  {"R2", 17.5},  {"kw1", 50.0}, {"kw2", 50.0},
                                               {"kr1", 10.0}, {"kr2", 10.0}, {"ks", -3e5}};
   std::mt19937 random(1);
   std::normal_distribution<double> scatter(0.0, 0.002);  // 0.2 % window-to-window scatter

@@ -11,9 +11,9 @@ int main(int argc, char** argv) try {
     return 2;
   }
   const ambid::Experiment e = ambid::read_experiment(argv[1]).experiment;
-  std::cout << e.name << ": plant " << e.plant.model << ", " << e.samples() << " samples at "
-            << e.sample_time << " s, " << e.y_names.size() << " outputs, " << e.u_names.size()
-            << " inputs, " << (e.controller ? "with" : "without") << " controller\n";
+  std::cout << e.name << ": plant " << e.plant.model << ", " << e.samples() << " samples at " << e.sample_time << " s, "
+            << e.y_names.size() << " outputs, " << e.u_names.size() << " inputs, "
+            << (e.controller ? "with" : "without") << " controller\n";
 } catch (const ambid::Error& error) {
   std::cerr << "read_experiment: " << error.what() << "\n";
   return 1;

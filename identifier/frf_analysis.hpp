@@ -22,10 +22,10 @@
 
 #include "core/experiment.hpp"
 #include "identifier/frequency_domain/frf_open_loop.hpp"
-#include "identifier/frf_types.hpp"
-#include "identifier/iso_14839.hpp"
 #include "identifier/frequency_domain/rational_fit.hpp"
 #include "identifier/frequency_domain/sensitivity_function.hpp"
+#include "identifier/frf_types.hpp"
+#include "identifier/iso_14839.hpp"
 
 namespace ambid::ident {
 
@@ -35,18 +35,18 @@ struct FrfAnalysisOptions {
   double f_min = 0.0, f_max = 0.0;   // lines kept (0: all)
   double confidence = 0.95;          // of the noise bounds
   bool fit = true;
-  double fit_f_max = 0.0;            // 0: min(highest line, 0.1 / sample_time)
+  double fit_f_max = 0.0;  // 0: min(highest line, 0.1 / sample_time)
   int fit_max_order = 6;
   IsoZoneLimits iso;
 };
 
 struct PlantPair {
-  std::string name;            // "OUTPUT/INPUT", e.g. "x/u1"
+  std::string name;  // "OUTPUT/INPUT", e.g. "x/u1"
   std::string output, input;
-  Eigen::VectorXcd value;      // per line
-  Eigen::VectorXd variance;    // E|error|^2 per line; empty when unknown
-  Eigen::VectorXd bound;       // |G - value| <= bound at options.confidence; empty when unknown
-  Eigen::VectorXd coherence;   // Welch: multiple coherence of the output with the references
+  Eigen::VectorXcd value;     // per line
+  Eigen::VectorXd variance;   // E|error|^2 per line; empty when unknown
+  Eigen::VectorXd bound;      // |G - value| <= bound at options.confidence; empty when unknown
+  Eigen::VectorXd coherence;  // Welch: multiple coherence of the output with the references
 };
 
 struct FittedPair {
@@ -60,10 +60,10 @@ struct FrfReport {
   std::vector<std::string> output_names, input_names, reference_names;
   Eigen::VectorXd frequency_hz;
   Frf plant, plant_direct, output_from_reference, input_from_reference;
-  std::vector<PlantPair> pairs;  // outputs x inputs, output-major
-  Eigen::Index blocks = 0;       // periodic: blocks averaged; stepped sine: steps; Welch: segments
-  std::optional<Frf> sensitivity;                 // input sensitivity S_u
-  std::vector<SensitivityPeak> sensitivity_peaks; // one per plant input, then "sigma_max"
+  std::vector<PlantPair> pairs;                    // outputs x inputs, output-major
+  Eigen::Index blocks = 0;                         // periodic: blocks averaged; stepped sine: steps; Welch: segments
+  std::optional<Frf> sensitivity;                  // input sensitivity S_u
+  std::vector<SensitivityPeak> sensitivity_peaks;  // one per plant input, then "sigma_max"
   std::optional<ControllerCheck> controller_check;
   std::vector<FittedPair> fits;
   std::vector<std::string> notes;

@@ -30,14 +30,14 @@ struct WelchFrfOptions {
 };
 
 struct WelchFrf {
-  Frf plant;                  // G indirect, with asymptotic variance (variance_dof 0)
-  Frf plant_direct;           // G_dir, no variance
-  Frf output_from_reference;  // T_yr
-  Frf input_from_reference;   // T_ur
+  Frf plant;                         // G indirect, with asymptotic variance (variance_dof 0)
+  Frf plant_direct;                  // G_dir, no variance
+  Frf output_from_reference;         // T_yr
+  Frf input_from_reference;          // T_ur
   Eigen::MatrixXd output_coherence;  // lines x outputs, in [0, 1]
   Eigen::MatrixXd input_coherence;   // lines x inputs
   Eigen::Index segments = 0;
-  double effective_segments = 0.0;   // M_eff
+  double effective_segments = 0.0;  // M_eff
 };
 
 // r, u, y: samples x signals, deviations. Throws Error for inconsistent sizes or options and

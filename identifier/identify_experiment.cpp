@@ -6,9 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_deadbeat.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
-#include "identifier/amb1dof_structure.hpp"
 #include "identifier/time_domain/closed_loop_id.hpp"
 #include "identifier/time_domain/closed_loop_validation.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
@@ -172,7 +172,8 @@ void validate_on(const Experiment& validation, Model& model) {
   const KnownController k = known_controller(*validation.controller, s.u_names, s.y_names);
   const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state);
   if (!nrmse.allFinite()) {
-    add_warning(model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
+    add_warning(
+        model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
     return;
   }
   for (Index j = 0; j < nrmse.size(); ++j) model.fit_nrmse[s.y_names[std::size_t(j)]] = nrmse(j);
@@ -188,7 +189,8 @@ void require(const IdentificationMethod& method, const Experiment& e) {
                 e.plant.model + "'");
   }
   if (method.needs_r && !e.has_excitation())
-    throw Error(kWho + ": method '" + method.name + "' needs the excitation r; the experiment records none (signals.r)");
+    throw Error(kWho + ": method '" + method.name +
+                "' needs the excitation r; the experiment records none (signals.r)");
   if (method.needs_controller && !e.controller)
     throw Error(kWho + ": method '" + method.name +
                 "' needs the controller that closed the loop; the experiment has no controller");
@@ -206,7 +208,9 @@ void fit_deadbeat_iv(const Experiment& e, const IdentifyOptions& o, Model& model
   fit_deadbeat_with(e, o, instrumental_variables(o), model);
 }
 
-void fit_okid(const Experiment& e, const IdentifyOptions& o, Model& model) { fit_realization(realize_okid, e, o, model); }
+void fit_okid(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  fit_realization(realize_okid, e, o, model);
+}
 
 void fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Model& model) {
   fit_realization(realize_closed_loop, e, o, model);

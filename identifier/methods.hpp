@@ -18,8 +18,8 @@ struct IdentifyOptions;
 
 struct IdentificationMethod {
   std::string name;
-  bool needs_controller = false;  // the controller that closed the loop (Experiment::controller)
-  bool needs_r = false;           // the recorded excitation r (signals.r)
+  bool needs_controller = false;      // the controller that closed the loop (Experiment::controller)
+  bool needs_r = false;               // the recorded excitation r (signals.r)
   std::vector<std::string> families;  // the plant models it is defined for; empty: any
   std::string description;            // one line
   // Fits `fit` (the part of the record to fit) into `model`. identify_experiment has checked

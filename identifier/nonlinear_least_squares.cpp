@@ -59,8 +59,9 @@ Termination termination(ceres::TerminationType type) {
 
 }  // namespace
 
-NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& p, const Eigen::VectorXd& start,
-                                         const NonlinearLeastSquaresOptions& o) {
+NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& p,
+                                                            const Eigen::VectorXd& start,
+                                                            const NonlinearLeastSquaresOptions& o) {
   const auto n = static_cast<int>(start.size());
   if (!p.residuals || p.residual_count < 1 || n < 1)
     throw Error("least squares: needs a residual function, residuals and parameters, got " +
@@ -76,8 +77,10 @@ NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeast
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;  // `cost` evaluates the Jacobian after the solve
   ceres::Problem problem(po);
   problem.AddResidualBlock(cost.get(), nullptr, out.x.data());
-  for (int i = 0; i < static_cast<int>(p.lower.size()); ++i) problem.SetParameterLowerBound(out.x.data(), i, p.lower(i));
-  for (int i = 0; i < static_cast<int>(p.upper.size()); ++i) problem.SetParameterUpperBound(out.x.data(), i, p.upper(i));
+  for (int i = 0; i < static_cast<int>(p.lower.size()); ++i)
+    problem.SetParameterLowerBound(out.x.data(), i, p.lower(i));
+  for (int i = 0; i < static_cast<int>(p.upper.size()); ++i)
+    problem.SetParameterUpperBound(out.x.data(), i, p.upper(i));
 
   ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;

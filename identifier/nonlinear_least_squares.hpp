@@ -34,7 +34,7 @@ struct NonlinearLeastSquaresOptions {
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-8;
   int max_consecutive_invalid_steps = 5;  // steps to a point the function refuses, before failing
-  bool jacobian = false;                   // also evaluate the residuals and Jacobian at the solution
+  bool jacobian = false;                  // also evaluate the residuals and Jacobian at the solution
 };
 
 enum class Termination {
@@ -58,7 +58,8 @@ struct NonlinearLeastSquaresSolution {
 };
 
 // From `start` (clamped into the bounds by the caller). Throws Error for sizes that do not agree.
-NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& problem, const Eigen::VectorXd& start,
-                                         const NonlinearLeastSquaresOptions& options = {});
+NonlinearLeastSquaresSolution solve_nonlinear_least_squares(const NonlinearLeastSquares& problem,
+                                                            const Eigen::VectorXd& start,
+                                                            const NonlinearLeastSquaresOptions& options = {});
 
 }  // namespace ambid::ident

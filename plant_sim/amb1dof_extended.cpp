@@ -122,7 +122,8 @@ Amb1dofExtended::Continuous Amb1dofExtended::continuous_derivative(const Continu
         force_state[2 + j] /= std::sqrt(1.0 + saturation_beta_ * flux * flux);
         // The air-gap flux linkage K/2 phi(a) falls with it: the coil equation of the nominal
         // model with K/2 scaled by phi'(a) = (1 + beta (a/a0)^2)^(-3/2).
-        const double a = core[2 + j] / gap, slope = std::pow(1.0 + saturation_beta_ * (a / flux0_) * (a / flux0_), -1.5);
+        const double a = core[2 + j] / gap,
+                     slope = std::pow(1.0 + saturation_beta_ * (a / flux0_) * (a / flux0_), -1.5);
         const double K = (j == 0 ? p.K1 : p.K2) * slope, sign = j == 0 ? -1.0 : 1.0;
         d[2 + j] = ((j == 0 ? p.kw1 : p.kw2) * u_coil[j] - (j == 0 ? p.R1 : p.R2) * core[2 + j] +
                     sign * 0.5 * K * a * core[1] / gap) /
@@ -170,8 +171,7 @@ Eigen::VectorXd Amb1dofExtended::output(const Eigen::VectorXd& x) const {
   // value(j): the sensed position j samples ago (j = 0: now).
   auto value = [&](int j) { return j == 0 ? sensed_position(x) : x[delay_state_ + j - 1]; };
   double position = value(delay_whole_);
-  if (delay_fraction_ > 0.0)
-    position = (1.0 - delay_fraction_) * position + delay_fraction_ * value(delay_whole_ + 1);
+  if (delay_fraction_ > 0.0) position = (1.0 - delay_fraction_) * position + delay_fraction_ * value(delay_whole_ + 1);
   return Eigen::Vector3d(sensor_gain_ * position, x[2], x[3]);
 }
 

@@ -14,12 +14,10 @@ struct Field {
   double Amb1dofParameters::*member;
 };
 constexpr Field kFields[] = {
-    {"m", &Amb1dofParameters::m},     {"x0", &Amb1dofParameters::x0},
-    {"i0", &Amb1dofParameters::i0},   {"R1", &Amb1dofParameters::R1},
-    {"R2", &Amb1dofParameters::R2},   {"Ls1", &Amb1dofParameters::Ls1},
-    {"Ls2", &Amb1dofParameters::Ls2}, {"K1", &Amb1dofParameters::K1},
-    {"K2", &Amb1dofParameters::K2},   {"kw1", &Amb1dofParameters::kw1},
-    {"kw2", &Amb1dofParameters::kw2},
+    {"m", &Amb1dofParameters::m},     {"x0", &Amb1dofParameters::x0},   {"i0", &Amb1dofParameters::i0},
+    {"R1", &Amb1dofParameters::R1},   {"R2", &Amb1dofParameters::R2},   {"Ls1", &Amb1dofParameters::Ls1},
+    {"Ls2", &Amb1dofParameters::Ls2}, {"K1", &Amb1dofParameters::K1},   {"K2", &Amb1dofParameters::K2},
+    {"kw1", &Amb1dofParameters::kw1}, {"kw2", &Amb1dofParameters::kw2},
 };
 
 std::string valid_names() {
@@ -58,17 +56,14 @@ Amb1dofParameters Amb1dofParameters::from_map(const std::map<std::string, double
   Amb1dofParameters p;
   for (const auto& f : kFields) {
     const auto it = values.find(f.name);
-    if (it == values.end())
-      throw Error(std::string("amb1dof_voltage parameter '") + f.name + "' is missing");
+    if (it == values.end()) throw Error(std::string("amb1dof_voltage parameter '") + f.name + "' is missing");
     p.*f.member = it->second;
   }
   p.validate();
   return p;
 }
 
-void Amb1dofParameters::set(const std::string& name, double value) {
-  this->*field(name).member = value;
-}
+void Amb1dofParameters::set(const std::string& name, double value) { this->*field(name).member = value; }
 
 double Amb1dofParameters::get(const std::string& name) const { return this->*field(name).member; }
 

@@ -9,9 +9,9 @@
 namespace ambid::sim {
 
 struct Amb1dofParameters {
-  double m = 0.0;    // rotor mass
-  double x0 = 0.0;   // nominal air gap (clearance) of each coil
-  double i0 = 0.0;   // bias current of both coils at the operating point
+  double m = 0.0;               // rotor mass
+  double x0 = 0.0;              // nominal air gap (clearance) of each coil
+  double i0 = 0.0;              // bias current of both coils at the operating point
   double R1 = 0.0, R2 = 0.0;    // coil resistances
   double Ls1 = 0.0, Ls2 = 0.0;  // leakage inductances
   double K1 = 0.0, K2 = 0.0;    // force constants: Fj = Kj/4 (ij / gap_j)^2

@@ -40,8 +40,7 @@ struct Amb1dofPhysical {
   double kr1_emf = 0.0, kr2_emf = 0.0, ks = 0.0;
   std::map<std::string, double> to_map() const;
 };
-Amb1dofPhysical amb1dof_physical_from_structure(const std::map<std::string, double>& v,
-                                                double L1, double L2, double m);
+Amb1dofPhysical amb1dof_physical_from_structure(const std::map<std::string, double>& v, double L1, double L2, double m);
 // Same, with L1, L2 and m taken from nominal parameters.
 Amb1dofPhysical amb1dof_physical_from_structure(const std::map<std::string, double>& v,
                                                 const Amb1dofParameters& nominal);

@@ -17,15 +17,12 @@ void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   }
 }
 
-
 // States x, x_dot, i1, i2 as plain scalars: the RK4 stages stay in registers.
 struct State {
   double pos, vel, i1, i2;
 };
 
-State operator+(const State& a, const State& b) {
-  return {a.pos + b.pos, a.vel + b.vel, a.i1 + b.i1, a.i2 + b.i2};
-}
+State operator+(const State& a, const State& b) { return {a.pos + b.pos, a.vel + b.vel, a.i1 + b.i1, a.i2 + b.i2}; }
 State operator*(double c, const State& a) { return {c * a.pos, c * a.vel, c * a.i1, c * a.i2}; }
 
 // The right-hand side with u and Fz held, as the RK4 stages evaluate it. Multiplying the
@@ -66,8 +63,7 @@ class RightHandSide {
     if (std::isnan(pos))
       msg << "amb1dof_voltage: rotor position x is not a number";
     else
-      msg << "amb1dof_voltage: the rotor touched the bearing: x = " << pos
-          << " m, air gap x0 = " << p_.x0 << " m";
+      msg << "amb1dof_voltage: the rotor touched the bearing: x = " << pos << " m, air gap x0 = " << p_.x0 << " m";
     throw Error(msg.str());
   }
 
@@ -77,33 +73,28 @@ class RightHandSide {
 
 }  // namespace
 
-Amb1dofVoltage::Amb1dofVoltage(const Amb1dofParameters& parameters) : p_(parameters) {
-  p_.validate();
-}
+Amb1dofVoltage::Amb1dofVoltage(const Amb1dofParameters& parameters) : p_(parameters) { p_.validate(); }
 
 std::string Amb1dofVoltage::model() const { return "amb1dof_voltage"; }
-std::vector<std::string> Amb1dofVoltage::state_names() const {
-  return {"x", "x_dot", "i1", "i2"};
-}
+std::vector<std::string> Amb1dofVoltage::state_names() const { return {"x", "x_dot", "i1", "i2"}; }
 std::vector<std::string> Amb1dofVoltage::input_names() const { return {"u1", "u2"}; }
 std::vector<std::string> Amb1dofVoltage::output_names() const { return {"x", "i1", "i2"}; }
 std::vector<std::string> Amb1dofVoltage::disturbance_names() const { return {"Fz"}; }
 
-Eigen::Vector4d Amb1dofVoltage::derivative(const Eigen::Vector4d& x, const Eigen::Vector2d& u,
-                                           double Fz) const {
+Eigen::Vector4d Amb1dofVoltage::derivative(const Eigen::Vector4d& x, const Eigen::Vector2d& u, double Fz) const {
   const State d = RightHandSide(p_, u[0], u[1], Fz)({x[0], x[1], x[2], x[3]});
   return {d.pos, d.vel, d.i1, d.i2};
 }
 
-void Amb1dofVoltage::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                             double sample_time, int substeps) const {
+void Amb1dofVoltage::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+                             int substeps) const {
   require_size(x, 4, "state (x, x_dot, i1, i2)");
   require_size(u, 2, "input (u1, u2)");
   require_size(w, 1, "disturbance (Fz)");
   if (!(sample_time > 0.0) || !std::isfinite(sample_time) || substeps < 1) {
     std::ostringstream msg;
-    msg << "amb1dof_voltage: sample time must be positive and substeps at least 1, got " << sample_time
-        << " s and " << substeps;
+    msg << "amb1dof_voltage: sample time must be positive and substeps at least 1, got " << sample_time << " s and "
+        << substeps;
     throw Error(msg.str());
   }
   const RightHandSide f(p_, u[0], u[1], w[0]);
@@ -139,29 +130,19 @@ void Amb1dofVoltage::output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) c
   y << x[0], x[2], x[3];
 }
 
-Eigen::VectorXd Amb1dofVoltage::equilibrium_state() const {
-  return Eigen::Vector4d(0.0, 0.0, p_.i0, p_.i0);
-}
+Eigen::VectorXd Amb1dofVoltage::equilibrium_state() const { return Eigen::Vector4d(0.0, 0.0, p_.i0, p_.i0); }
 
 Eigen::VectorXd Amb1dofVoltage::equilibrium_input() const {
   return Eigen::Vector2d(p_.R1 * p_.i0 / p_.kw1, p_.R2 * p_.i0 / p_.kw2);
 }
 
-ContinuousSystem Amb1dofVoltage::linearize() const {
-  return amb1dof_structure_system(structure_parameters());
-}
+ContinuousSystem Amb1dofVoltage::linearize() const { return amb1dof_structure_system(structure_parameters()); }
 
-Eigen::MatrixXd Amb1dofVoltage::disturbance_matrix() const {
-  return Eigen::Vector4d(0.0, 1.0 / p_.m, 0.0, 0.0);
-}
+Eigen::MatrixXd Amb1dofVoltage::disturbance_matrix() const { return Eigen::Vector4d(0.0, 1.0 / p_.m, 0.0, 0.0); }
 
-std::map<std::string, double> Amb1dofVoltage::structure_parameters() const {
-  return amb1dof_structure_parameters(p_);
-}
+std::map<std::string, double> Amb1dofVoltage::structure_parameters() const { return amb1dof_structure_parameters(p_); }
 
-Eigen::VectorXd Amb1dofVoltage::state_scale() const {
-  return Eigen::Vector4d(p_.x0, p_.x0 * 1e3, p_.i0, p_.i0);
-}
+Eigen::VectorXd Amb1dofVoltage::state_scale() const { return Eigen::Vector4d(p_.x0, p_.x0 * 1e3, p_.i0, p_.i0); }
 
 Eigen::VectorXd Amb1dofVoltage::input_scale() const { return equilibrium_input(); }
 

@@ -24,7 +24,7 @@ class Amb1dofVoltage : public Plant {
 
   const Amb1dofParameters& parameters() const { return p_; }
 
-  std::string model() const override;  // "amb1dof_voltage"
+  std::string model() const override;                           // "amb1dof_voltage"
   std::vector<std::string> state_names() const override;        // x, x_dot, i1, i2
   std::vector<std::string> input_names() const override;        // u1, u2
   std::vector<std::string> output_names() const override;       // x, i1, i2
@@ -38,8 +38,8 @@ class Amb1dofVoltage : public Plant {
 
   // RK4 on the fixed-size right-hand side: the same scheme as Rk4Integrator, without heap
   // allocation (the closed-loop runner's hot path).
-  void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-               double sample_time, int substeps) const override;
+  void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+               int substeps) const override;
 
   // Allocation-free right-hand side for fixed-size callers (same equations and checks).
   Eigen::Vector4d derivative(const Eigen::Vector4d& x, const Eigen::Vector2d& u, double Fz) const;

@@ -44,8 +44,8 @@ void check_names(const char* what, const std::vector<std::string>& header_names,
 
 void check_size(const char* what, const Eigen::VectorXd& v, Eigen::Index expected) {
   if (v.size() != 0 && v.size() != expected)
-    throw Error(std::string("closed loop: ") + what + " has " + std::to_string(v.size()) +
-                " entries, expected " + std::to_string(expected));
+    throw Error(std::string("closed loop: ") + what + " has " + std::to_string(v.size()) + " entries, expected " +
+                std::to_string(expected));
   if (v.size() != 0 && !v.allFinite()) throw Error(std::string("closed loop: ") + what + " is not finite");
 }
 
@@ -75,8 +75,8 @@ struct Loop {
     const Eigen::Matrix<double, NC, NV> B = ctrl.B;
     const Eigen::Matrix<double, NU, NC> C = ctrl.C;
     const Eigen::Matrix<double, NU, NV> D = ctrl.D;
-    StateVector xc = ctrl.initial_state.size() ? StateVector(ctrl.initial_state)
-                                               : StateVector(StateVector::Zero(ctrl.states()));
+    StateVector xc =
+        ctrl.initial_state.size() ? StateVector(ctrl.initial_state) : StateVector(StateVector::Zero(ctrl.states()));
     StateVector xc_next(xc.size());
     Eigen::Matrix<double, NV, 1> v = Eigen::Matrix<double, NV, 1>::Zero(B.cols());
     Eigen::Matrix<double, NU, 1> du(C.rows()), u_cmd(C.rows());
@@ -152,7 +152,8 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   if (std::abs(ctrl.sample_time - dt) > 1e-9 * dt)
     throw Error("closed loop: controller sample_time " + std::to_string(ctrl.sample_time) +
                 " differs from the experiment's " + std::to_string(dt));
-  if (options.samples < 1) throw Error("closed loop: samples must be at least 1, got " + std::to_string(options.samples));
+  if (options.samples < 1)
+    throw Error("closed loop: samples must be at least 1, got " + std::to_string(options.samples));
 
   const Eigen::Index ny = std::ssize(header.y_names), nu = std::ssize(header.u_names);
   const Eigen::Index nw = std::ssize(truth.disturbance_names());
@@ -171,16 +172,16 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   check_size("input_lower", options.input_lower, nu);
   check_size("input_upper", options.input_upper, nu);
   const bool limited = options.input_lower.size() != 0 || options.input_upper.size() != 0;
-  const Eigen::VectorXd lower = options.input_lower.size() ? options.input_lower
-                                                           : Eigen::VectorXd::Constant(nu, -INFINITY);
-  const Eigen::VectorXd upper = options.input_upper.size() ? options.input_upper
-                                                           : Eigen::VectorXd::Constant(nu, INFINITY);
+  const Eigen::VectorXd lower =
+      options.input_lower.size() ? options.input_lower : Eigen::VectorXd::Constant(nu, -INFINITY);
+  const Eigen::VectorXd upper =
+      options.input_upper.size() ? options.input_upper : Eigen::VectorXd::Constant(nu, INFINITY);
   const int substeps = options.substeps > 0 ? options.substeps : kDefaultSubsteps;
 
   Loop loop{truth, options, substeps, dt, excited, limited, lower, upper};
   for (std::size_t j = 0; j < ctrl.inputs.size(); ++j) {
     const InputRoute route = route_of(ctrl.inputs[j], header);
-    auto& target = route.source == Source::output ? loop.from_output
+    auto& target = route.source == Source::output  ? loop.from_output
                    : route.source == Source::input ? loop.from_input
                                                    : loop.from_excitation;
     target.push_back({Eigen::Index(j), route.index});
@@ -204,8 +205,9 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   const Eigen::Index nc = ctrl.states(), nv = std::ssize(ctrl.inputs);
   // The observer controller of amb1dof_voltage (4 + 1 states; inputs u1, u2, x, i1, i2) runs
   // with fixed-size matrices; any other controller with dynamic ones.
-  const Eigen::Index saturated = nc == 5 && nv == 5 && nu == 2 ? loop.run<5, 5, 2>(ctrl, out)
-                                                               : loop.run<Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>(ctrl, out);
+  const Eigen::Index saturated = nc == 5 && nv == 5 && nu == 2
+                                     ? loop.run<5, 5, 2>(ctrl, out)
+                                     : loop.run<Eigen::Dynamic, Eigen::Dynamic, Eigen::Dynamic>(ctrl, out);
   if (statistics) statistics->saturated_samples = saturated;
   return out;
 }

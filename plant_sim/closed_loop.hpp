@@ -20,8 +20,8 @@ struct ClosedLoopOptions {
   // Excitation r added to the controller output, deviations, samples x controller outputs, in
   // the order of the controller's `outputs`. Empty: no excitation is recorded.
   Eigen::MatrixXd excitation;
-  Eigen::VectorXd measurement_noise_std;  // per plant output, absolute units; empty: none
-  Eigen::VectorXd process_noise_std;      // per plant disturbance; empty: none
+  Eigen::VectorXd measurement_noise_std;     // per plant output, absolute units; empty: none
+  Eigen::VectorXd process_noise_std;         // per plant disturbance; empty: none
   Eigen::VectorXd input_lower, input_upper;  // absolute actuator limits; empty: none
   std::uint64_t seed = 0;
 };
@@ -38,7 +38,7 @@ struct ClosedLoopStatistics {
 // the controller at its initial_state (or zero).
 // Throws Error on inconsistent names or dimensions, and when the plant leaves its valid
 // region (e.g. the rotor touches the bearing), naming the time.
-Experiment run_closed_loop(const Plant& truth, const Experiment& header,
-                           const ClosedLoopOptions& options, ClosedLoopStatistics* statistics = nullptr);
+Experiment run_closed_loop(const Plant& truth, const Experiment& header, const ClosedLoopOptions& options,
+                           ClosedLoopStatistics* statistics = nullptr);
 
 }  // namespace ambid::sim

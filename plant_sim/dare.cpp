@@ -14,9 +14,7 @@ namespace {
 constexpr int kMaxIterations = 100;
 constexpr double kConvergence = 1e-14;
 
-std::string dims(const Eigen::MatrixXd& m) {
-  return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
-}
+std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
 
 void require(bool ok, const std::string& message) {
   if (!ok) throw Error("DARE: " + message);
@@ -86,9 +84,8 @@ void check_stabilisable(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
     const double smallest = linalg::singular_values(pbh)(n - 1);
     if (smallest <= 1e-11 * scale) {
       std::ostringstream msg;
-      msg << "the pair (A, B) is not stabilisable: eigenvalue " << z.real()
-          << (z.imag() < 0 ? " - " : " + ") << std::abs(z.imag()) << "i (|z| = " << std::abs(z)
-          << ") is not controllable";
+      msg << "the pair (A, B) is not stabilisable: eigenvalue " << z.real() << (z.imag() < 0 ? " - " : " + ")
+          << std::abs(z.imag()) << "i (|z| = " << std::abs(z) << ") is not controllable";
       require(false, msg.str());
     }
   }
@@ -96,18 +93,16 @@ void check_stabilisable(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
 
 }  // namespace
 
-Eigen::MatrixXd dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                              const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                              const Eigen::MatrixXd& X, const Eigen::MatrixXd& N) {
+Eigen::MatrixXd dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                              const Eigen::MatrixXd& R, const Eigen::MatrixXd& X, const Eigen::MatrixXd& N) {
   Eigen::MatrixXd cross = A.transpose() * X * B;
   if (N.size() != 0) cross += N;
   const Eigen::MatrixXd S = R + B.transpose() * X * B;
   return A.transpose() * X * A - X - cross * linalg::ldlt_solve(S, cross.transpose()) + Q;
 }
 
-Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                           const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                           const Eigen::MatrixXd& N) {
+Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                           const Eigen::MatrixXd& R, const Eigen::MatrixXd& N) {
   check_inputs(A, B, Q, R, N);
   check_stabilisable(A, B);
   const Eigen::Index n = A.rows();
@@ -146,9 +141,8 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
   }
   if (!converged) {
     std::ostringstream msg;
-    msg << "doubling iteration did not converge in " << kMaxIterations
-        << " steps (last relative change " << change / std::max(1.0, Hk.norm())
-        << "); an eigenvalue on the unit circle may be unobserved by Q";
+    msg << "doubling iteration did not converge in " << kMaxIterations << " steps (last relative change "
+        << change / std::max(1.0, Hk.norm()) << "); an eigenvalue on the unit circle may be unobserved by Q";
     require(false, msg.str());
   }
 

@@ -15,14 +15,12 @@ namespace ambid::sim {
 // semidefinite, (A, B) is not stabilisable (names the uncontrollable eigenvalue on or outside
 // the unit circle), or the doubling does not converge (e.g. an eigenvalue on the unit circle
 // that the weight Q does not see).
-Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                           const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                           const Eigen::MatrixXd& N = Eigen::MatrixXd());
+Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                           const Eigen::MatrixXd& R, const Eigen::MatrixXd& N = Eigen::MatrixXd());
 
 // The left-hand side of the equation above for a given X (zero at the solution).
-Eigen::MatrixXd dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                              const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                              const Eigen::MatrixXd& X,
+Eigen::MatrixXd dare_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                              const Eigen::MatrixXd& R, const Eigen::MatrixXd& X,
                               const Eigen::MatrixXd& N = Eigen::MatrixXd());
 
 }  // namespace ambid::sim

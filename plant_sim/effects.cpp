@@ -20,41 +20,52 @@ EffectParameterSpec shape(std::string name, std::string unit, double value, doub
 
 std::vector<EffectSpec> build_catalogue() {
   return {
-      {"coil_resistance", true,
+      {"coil_resistance",
+       true,
        {switching("dR", "ohm", 3.5, -15.0, 100.0, "true resistance of the coil minus its nominal Rj")},
        "the coil resistance differs from the nominal (a hot or damaged coil)"},
-      {"amplifier_gain", true,
+      {"amplifier_gain",
+       true,
        {switching("dkw", "V/V", 0.2, -0.9, 10.0, "true amplifier gain minus its nominal kwj")},
        "the amplifier gain differs from the nominal"},
-      {"amplifier_bandwidth", true,
+      {"amplifier_bandwidth",
+       true,
        {switching("tau", "s", 2e-4, 0.0, 1e-2, "time constant of the amplifier's first-order lag")},
        "the amplifier output voltage lags its command (finite bandwidth)"},
-      {"eddy_current", false,
+      {"eddy_current",
+       false,
        {switching("tau", "s", 2e-4, 0.0, 1e-2, "time constant of the force lag behind the coil currents")},
        "eddy currents in the iron delay the magnetic force behind the coil currents"},
-      {"sensor_delay", false,
+      {"sensor_delay",
+       false,
        {switching("delay", "s", 5e-5, 0.0, 1e-2, "dead time of the position measurement")},
        "the position measurement arrives late (conversion, filtering, bus)"},
-      {"sensor_gain", false,
+      {"sensor_gain",
+       false,
        {switching("dgain", "1", 0.1, -0.9, 10.0, "relative error of the position sensor gain")},
        "the position sensor is mis-calibrated"},
-      {"flexible_mode", false,
+      {"flexible_mode",
+       false,
        {switching("coupling", "1", 0.1, -10.0, 10.0,
                   "modal displacement seen by the sensor per unit rigid-body acceleration times w^2"),
         shape("f", "Hz", 800.0, 50.0, 1e5, "natural frequency of the mode"),
         shape("zeta", "1", 0.01, 1e-4, 0.2, "damping ratio of the mode (a lightly damped bending mode)")},
        "a bending mode of the rotor, excited by the bearing force, is seen by the position sensor"},
-      {"magnetic_saturation", false,
+      {"magnetic_saturation",
+       false,
        {switching("beta", "1", 0.3, 0.0, 100.0,
                   "saturation coefficient: force flux falls by 1/sqrt(1 + beta) at the operating flux")},
        "the iron saturates: the force grows slower than the square of the flux"},
-      {"air_gap", false,
+      {"air_gap",
+       false,
        {switching("dx0", "m", 3.5e-5, -3e-4, 1e-3, "true air gap minus the nominal x0")},
        "the air gap differs from the nominal (assembly, thermal growth, wear of the touchdown path)"},
-      {"rotor_mass", false,
+      {"rotor_mass",
+       false,
        {switching("dm", "kg", 0.18, -1.7, 100.0, "true rotor mass minus the nominal m")},
        "the rotor mass differs from the nominal (an added part, a different rotor)"},
-      {"harmonic_disturbance", false,
+      {"harmonic_disturbance",
+       false,
        {shape("f", "Hz", 50.0, 0.1, 5000.0, "frequency of the disturbance force"),
         switching("Fc", "N", 0.5, -1e4, 1e4, "cosine amplitude of the force"),
         switching("Fs", "N", 0.5, -1e4, 1e4, "sine amplitude of the force")},
@@ -95,9 +106,8 @@ double Effect::at(const std::string& parameter) const {
 
 bool Effect::neutral() const {
   const EffectSpec& spec = effect_spec(name);
-  return std::all_of(spec.parameters.begin(), spec.parameters.end(), [&](const EffectParameterSpec& p) {
-    return !p.switches || at(p.name) == p.neutral;
-  });
+  return std::all_of(spec.parameters.begin(), spec.parameters.end(),
+                     [&](const EffectParameterSpec& p) { return !p.switches || at(p.name) == p.neutral; });
 }
 
 Effect make_effect(const std::string& name, const std::map<std::string, double>& values) {
@@ -121,8 +131,8 @@ Effect make_effect(const std::string& name, const std::map<std::string, double>&
     }
     if (!std::isfinite(value) || value < p->lower || value > p->upper) {
       std::ostringstream msg;
-      msg << "effect " << name << ": " << key << " = " << value << " " << p->unit << " is outside ["
-          << p->lower << ", " << p->upper << "]";
+      msg << "effect " << name << ": " << key << " = " << value << " " << p->unit << " is outside [" << p->lower << ", "
+          << p->upper << "]";
       throw Error(msg.str());
     }
     e.parameters[key] = value;

@@ -13,10 +13,10 @@ namespace ambid::sim {
 struct EffectParameterSpec {
   std::string name;
   std::string unit;
-  double neutral = 0.0;  // default: the value at which the effect vanishes (or a shape default)
-  double scale = 1.0;    // a typical moderate magnitude (fit scaling, test ranges)
+  double neutral = 0.0;                  // default: the value at which the effect vanishes (or a shape default)
+  double scale = 1.0;                    // a typical moderate magnitude (fit scaling, test ranges)
   double lower = -1e300, upper = 1e300;  // physically admissible range (inclusive)
-  bool switches = false;  // the effect vanishes exactly when every switching parameter is neutral
+  bool switches = false;                 // the effect vanishes exactly when every switching parameter is neutral
   std::string meaning;
 };
 

@@ -53,11 +53,39 @@ nlohmann::json common(const char* kind, Eigen::Index samples, int channels, doub
 // Fibonacci LFSR taps (1-based positions) of primitive polynomials, register lengths 2..32.
 const std::array<std::vector<int>, 33>& lfsr_taps() {
   static const std::array<std::vector<int>, 33> taps = {{
-      {}, {}, {2, 1}, {3, 2}, {4, 3}, {5, 3}, {6, 5}, {7, 6}, {8, 6, 5, 4}, {9, 5}, {10, 7},
-      {11, 9}, {12, 6, 4, 1}, {13, 4, 3, 1}, {14, 5, 3, 1}, {15, 14}, {16, 15, 13, 4},
-      {17, 14}, {18, 11}, {19, 6, 2, 1}, {20, 17}, {21, 19}, {22, 21}, {23, 18},
-      {24, 23, 22, 17}, {25, 22}, {26, 6, 2, 1}, {27, 5, 2, 1}, {28, 25}, {29, 27}, {30, 6, 4, 1},
-      {31, 28}, {32, 22, 2, 1},
+      {},
+      {},
+      {2, 1},
+      {3, 2},
+      {4, 3},
+      {5, 3},
+      {6, 5},
+      {7, 6},
+      {8, 6, 5, 4},
+      {9, 5},
+      {10, 7},
+      {11, 9},
+      {12, 6, 4, 1},
+      {13, 4, 3, 1},
+      {14, 5, 3, 1},
+      {15, 14},
+      {16, 15, 13, 4},
+      {17, 14},
+      {18, 11},
+      {19, 6, 2, 1},
+      {20, 17},
+      {21, 19},
+      {22, 21},
+      {23, 18},
+      {24, 23, 22, 17},
+      {25, 22},
+      {26, 6, 2, 1},
+      {27, 5, 2, 1},
+      {28, 25},
+      {29, 27},
+      {30, 6, 4, 1},
+      {31, 28},
+      {32, 22, 2, 1},
   }};
   return taps;
 }
@@ -69,8 +97,7 @@ struct Lfsr {
   std::uint64_t mask, feedback;
 
   explicit Lfsr(int length) : n(length), mask((std::uint64_t{1} << length) - 1), feedback(0) {
-    for (const int t : lfsr_taps()[static_cast<std::size_t>(length)])
-      feedback |= std::uint64_t{1} << (t - 1);
+    for (const int t : lfsr_taps()[static_cast<std::size_t>(length)]) feedback |= std::uint64_t{1} << (t - 1);
   }
   std::uint64_t next(std::uint64_t s) const {
     const std::uint64_t bit = static_cast<std::uint64_t>(std::popcount(s & feedback) & 1);
@@ -119,8 +146,7 @@ Excitation prbs(const PrbsOptions& o, Eigen::Index samples, double sample_time) 
   nlohmann::json shifts = nlohmann::json::array();
   for (int j = 0; j < o.channels; ++j) {
     const std::uint64_t shift =
-        (base + static_cast<std::uint64_t>(j) * (period / static_cast<std::uint64_t>(o.channels))) %
-        period;
+        (base + static_cast<std::uint64_t>(j) * (period / static_cast<std::uint64_t>(o.channels))) % period;
     shifts.push_back(shift);
     std::uint64_t state = lfsr.advance(1, shift);
     for (Eigen::Index k = 0; k < samples; ++k) {
@@ -163,8 +189,8 @@ Excitation random_signal(const RandomOptions& o, Eigen::Index samples, double sa
       out.samples(k, j) = value;
     }
   }
-  out.description.json() = common(o.kind == NoiseKind::binary ? "random_binary" : "gaussian", samples,
-                                 o.channels, sample_time);
+  out.description.json() =
+      common(o.kind == NoiseKind::binary ? "random_binary" : "gaussian", samples, o.channels, sample_time);
   out.description.json().update({{"amplitude", o.amplitude},
                                  {"clock_divider", o.clock_divider},
                                  {"channel_pattern", "independent"},
@@ -174,8 +200,7 @@ Excitation random_signal(const RandomOptions& o, Eigen::Index samples, double sa
 }
 
 Eigen::MatrixXd hadamard(int order) {
-  if (order < 1 || (order & (order - 1)) != 0)
-    fail("Hadamard matrix", "order must be a power of two", order);
+  if (order < 1 || (order & (order - 1)) != 0) fail("Hadamard matrix", "order must be a power of two", order);
   Eigen::MatrixXd H = Eigen::MatrixXd::Ones(1, 1);
   while (H.rows() < order) {
     const Eigen::Index r = H.rows();
@@ -206,8 +231,8 @@ Excitation multisine(const MultisineOptions& o, double T) {
   }
   if (lines.empty()) {
     std::ostringstream msg;
-    msg << "multisine: no DFT line in the band " << o.f_min << " .. " << o.f_max
-        << " Hz (line spacing " << resolution << " Hz, Nyquist " << 0.5 / T << " Hz)";
+    msg << "multisine: no DFT line in the band " << o.f_min << " .. " << o.f_max << " Hz (line spacing " << resolution
+        << " Hz, Nyquist " << 0.5 / T << " Hz)";
     throw Error(msg.str());
   }
 
@@ -221,8 +246,7 @@ Excitation multisine(const MultisineOptions& o, double T) {
     const double f = static_cast<double>(lines[i]) * resolution;
     a[i] = o.amplitude_spectrum ? o.amplitude_spectrum(f) : 1.0;
     if (!(a[i] >= 0.0) || !std::isfinite(a[i]))
-      fail(where, "amplitude_spectrum must be finite and non-negative at " + std::to_string(f) +
-                      " Hz", a[i]);
+      fail(where, "amplitude_spectrum must be finite and non-negative at " + std::to_string(f) + " Hz", a[i]);
     phi[i] = kTwoPi * uniform01(rng);
     power += a[i] * a[i] / 2.0;
   }
@@ -240,9 +264,8 @@ Excitation multisine(const MultisineOptions& o, double T) {
   Eigen::VectorXd period(N);
   for (Eigen::Index n = 0; n < N; ++n) period(n) = time[static_cast<std::size_t>(n)].real();
 
-  const double scale = o.normalisation == Normalisation::rms
-                           ? o.level / std::sqrt(power)
-                           : o.level / period.cwiseAbs().maxCoeff();
+  const double scale =
+      o.normalisation == Normalisation::rms ? o.level / std::sqrt(power) : o.level / period.cwiseAbs().maxCoeff();
   period *= scale;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     amplitudes.push_back(a[i] * scale);
@@ -255,31 +278,30 @@ Excitation multisine(const MultisineOptions& o, double T) {
   if (o.pattern == ChannelPattern::hadamard) {
     while (order < o.channels) order *= 2;
     if (o.periods % order != 0)
-      fail(where, "with the hadamard pattern for " + std::to_string(o.channels) +
-                      " channels, periods must be a multiple of " + std::to_string(order),
+      fail(where,
+           "with the hadamard pattern for " + std::to_string(o.channels) + " channels, periods must be a multiple of " +
+               std::to_string(order),
            o.periods);
     H = hadamard(order).topRows(o.channels);
   }
   Excitation out;
   out.samples.resize(N * o.periods, o.channels);
   for (int p = 0; p < o.periods; ++p)
-    for (int j = 0; j < o.channels; ++j)
-      out.samples.block(p * N, j, N, 1) = H(j, p % H.cols()) * period;
+    for (int j = 0; j < o.channels; ++j) out.samples.block(p * N, j, N, 1) = H(j, p % H.cols()) * period;
 
   out.description.json() = common("multisine", N * o.periods, o.channels, T);
-  out.description.json().update(
-      {{"normalisation", o.normalisation == Normalisation::rms ? "rms" : "peak"},
-       {"level", o.level},
-       {"rms", std::sqrt(period.squaredNorm() / static_cast<double>(N))},
-       {"peak", period.cwiseAbs().maxCoeff()},
-       {"period_samples", N},
-       {"periods", o.periods},
-       {"lines", lines},
-       {"frequencies", frequencies},
-       {"line_amplitudes", amplitudes},
-       {"phases", phases},
-       {"channel_pattern", o.pattern == ChannelPattern::hadamard ? "hadamard" : "identical"},
-       {"seed", o.seed}});
+  out.description.json().update({{"normalisation", o.normalisation == Normalisation::rms ? "rms" : "peak"},
+                                 {"level", o.level},
+                                 {"rms", std::sqrt(period.squaredNorm() / static_cast<double>(N))},
+                                 {"peak", period.cwiseAbs().maxCoeff()},
+                                 {"period_samples", N},
+                                 {"periods", o.periods},
+                                 {"lines", lines},
+                                 {"frequencies", frequencies},
+                                 {"line_amplitudes", amplitudes},
+                                 {"phases", phases},
+                                 {"channel_pattern", o.pattern == ChannelPattern::hadamard ? "hadamard" : "identical"},
+                                 {"seed", o.seed}});
   if (o.pattern == ChannelPattern::hadamard) {
     nlohmann::json rows = nlohmann::json::array();
     const Eigen::MatrixXd full = hadamard(order);
@@ -315,9 +337,8 @@ Excitation chirp(const ChirpOptions& o, Eigen::Index samples, double T) {
   out.samples.resize(samples, o.channels);
   for (Eigen::Index n = 0; n < samples; ++n) {
     const double t = static_cast<double>(n) * T;
-    const double phase = o.sweep == Sweep::linear
-                             ? kTwoPi * (o.f_start * t + (o.f_end - o.f_start) * t * t / (2 * D))
-                             : kTwoPi * o.f_start / rate * std::expm1(rate * t);
+    const double phase = o.sweep == Sweep::linear ? kTwoPi * (o.f_start * t + (o.f_end - o.f_start) * t * t / (2 * D))
+                                                  : kTwoPi * o.f_start / rate * std::expm1(rate * t);
     out.samples.row(n).setConstant(o.amplitude * std::sin(phase));
   }
   out.description.json() = common("chirp", samples, o.channels, T);
@@ -345,8 +366,7 @@ Excitation stepped_sine(const SteppedSineOptions& o, double T) {
     if (!(f > 0.0) || !(f < 0.5 / T))
       fail(where, "every frequency must lie in (0, Nyquist = " + std::to_string(0.5 / T) + " Hz)", f);
     const auto M = static_cast<Eigen::Index>(std::llround(o.measure_periods / (f * T)));
-    if (M < 2 * o.measure_periods)
-      fail(where, "frequency too close to Nyquist for whole periods", f);
+    if (M < 2 * o.measure_periods) fail(where, "frequency too close to Nyquist for whole periods", f);
     measure.push_back(M);
     total += settle + M;
   }
@@ -358,8 +378,7 @@ Excitation stepped_sine(const SteppedSineOptions& o, double T) {
     const Eigen::Index M = measure[i];
     const double f = o.measure_periods / (static_cast<double>(M) * T);
     for (Eigen::Index n = 0; n < settle + M; ++n)
-      out.samples.row(start + n)
-          .setConstant(o.amplitude * std::sin(kTwoPi * f * static_cast<double>(n) * T));
+      out.samples.row(start + n).setConstant(o.amplitude * std::sin(kTwoPi * f * static_cast<double>(n) * T));
     steps.push_back({{"frequency_requested", o.frequencies[i]},
                      {"frequency", f},
                      {"start_sample", start},

@@ -19,7 +19,7 @@
 namespace ambid::sim {
 
 struct Excitation {
-  Eigen::MatrixXd samples;        // samples x channels
+  Eigen::MatrixXd samples;  // samples x channels
   JsonValue description;
 };
 
@@ -111,7 +111,7 @@ double chirp_frequency(const ChirpOptions& options, double duration, double t);
 struct SteppedSineOptions {
   std::vector<double> frequencies;  // Hz, each 0 < f < 1 / (2 T)
   int measure_periods = 10;
-  double settle_time = 0.0;         // s
+  double settle_time = 0.0;  // s
   double amplitude = 1.0;
   int channels = 1;
 };

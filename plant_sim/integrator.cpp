@@ -17,16 +17,14 @@ void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   }
 }
 
-void check_arguments(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                     Eigen::Index states, Eigen::Index inputs, Eigen::Index disturbances,
-                     double sample_time, int substeps) {
+void check_arguments(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, Eigen::Index states,
+                     Eigen::Index inputs, Eigen::Index disturbances, double sample_time, int substeps) {
   if (!(sample_time > 0.0) || !std::isfinite(sample_time)) {
     std::ostringstream msg;
     msg << "integrate_sample: sample time must be positive and finite, got " << sample_time;
     throw Error(msg.str());
   }
-  if (substeps < 1)
-    throw Error("integrate_sample: substeps must be at least 1, got " + std::to_string(substeps));
+  if (substeps < 1) throw Error("integrate_sample: substeps must be at least 1, got " + std::to_string(substeps));
   require_size(x, states, "state");
   require_size(u, inputs, "input");
   require_size(w, disturbances, "disturbance");
@@ -46,8 +44,8 @@ Rk4Integrator::Rk4Integrator(const Plant& plant)
   xt_.resize(n);
 }
 
-void Rk4Integrator::integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& u,
-                                     const Eigen::VectorXd& w, double sample_time, int substeps) {
+void Rk4Integrator::integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
+                                     double sample_time, int substeps) {
   check_arguments(x, u, w, xt_.size(), inputs_, disturbances_, sample_time, substeps);
 
   const double h = sample_time / substeps;
@@ -67,14 +65,13 @@ void Rk4Integrator::integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& 
   }
 }
 
-void Plant::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                    double sample_time, int substeps) const {
+void Plant::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+                    int substeps) const {
   Rk4Integrator(*this).integrate_sample(x, u, w, sample_time, substeps);
 }
 
-Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x,
-                                 const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                                 double sample_time, int substeps) {
+Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+                                 const Eigen::VectorXd& w, double sample_time, int substeps) {
   check_arguments(x, u, w, std::ssize(plant.state_names()), std::ssize(plant.input_names()),
                   std::ssize(plant.disturbance_names()), sample_time, substeps);
   Eigen::VectorXd out = x;

@@ -17,9 +17,8 @@ inline constexpr int kDefaultSubsteps = 1;
 // The state one sample_time later, from x, with `substeps` equal RK4 steps.
 // Error on non-positive sample_time or substeps, or wrongly sized x, u, w; errors of the
 // plant (e.g. the rotor touching the bearing) propagate.
-Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x,
-                                 const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                                 double sample_time, int substeps = kDefaultSubsteps);
+Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x, const Eigen::VectorXd& u,
+                                 const Eigen::VectorXd& w, double sample_time, int substeps = kDefaultSubsteps);
 
 // The same with its work vectors allocated once, for loops over many samples: advances x in
 // place. Only Plant::derivative's result vectors are allocated per evaluation. Keeps a
@@ -27,8 +26,8 @@ Eigen::VectorXd integrate_sample(const Plant& plant, const Eigen::VectorXd& x,
 class Rk4Integrator {
  public:
   explicit Rk4Integrator(const Plant& plant);
-  void integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                        double sample_time, int substeps = kDefaultSubsteps);
+  void integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+                        int substeps = kDefaultSubsteps);
 
  private:
   const Plant& plant_;

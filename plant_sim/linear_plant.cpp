@@ -18,8 +18,7 @@ void require_names(const std::vector<std::string>& names, Eigen::Index count, co
   std::set<std::string> seen;
   for (const auto& n : names) {
     if (n.empty()) throw Error(std::string("linear plant: empty name among the ") + what);
-    if (!seen.insert(n).second)
-      throw Error(std::string("linear plant: duplicate name '") + n + "' among the " + what);
+    if (!seen.insert(n).second) throw Error(std::string("linear plant: duplicate name '") + n + "' among the " + what);
   }
 }
 
@@ -45,21 +44,17 @@ LinearPlant::LinearPlant(NamedSystem named)
 
 LinearPlant::LinearPlant(NamedSystem named, Eigen::MatrixXd disturbance_matrix,
                          std::vector<std::string> disturbance_names)
-    : named_(std::move(named)),
-      E_(std::move(disturbance_matrix)),
-      disturbance_names_(std::move(disturbance_names)) {
+    : named_(std::move(named)), E_(std::move(disturbance_matrix)), disturbance_names_(std::move(disturbance_names)) {
   const ContinuousSystem& s = named_.system;
   s.validate();
   if (!s.D.isZero(0.0))
-    throw Error("linear plant '" + named_.model +
-                "': D must be zero (a plant's output depends on its state only)");
+    throw Error("linear plant '" + named_.model + "': D must be zero (a plant's output depends on its state only)");
   require_names(named_.state_names, s.states(), "states");
   require_names(named_.input_names, s.inputs(), "inputs");
   require_names(named_.output_names, s.outputs(), "outputs");
   if (E_.rows() != s.states()) {
     std::ostringstream msg;
-    msg << "linear plant: disturbance matrix must have " << s.states() << " rows (states), got "
-        << E_.rows();
+    msg << "linear plant: disturbance matrix must have " << s.states() << " rows (states), got " << E_.rows();
     throw Error(msg.str());
   }
   require_names(disturbance_names_, E_.cols(), "disturbances");
@@ -86,12 +81,8 @@ void LinearPlant::output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) cons
   y.noalias() = named_.system.C * x;
 }
 
-Eigen::VectorXd LinearPlant::equilibrium_state() const {
-  return Eigen::VectorXd::Zero(named_.system.states());
-}
+Eigen::VectorXd LinearPlant::equilibrium_state() const { return Eigen::VectorXd::Zero(named_.system.states()); }
 
-Eigen::VectorXd LinearPlant::equilibrium_input() const {
-  return Eigen::VectorXd::Zero(named_.system.inputs());
-}
+Eigen::VectorXd LinearPlant::equilibrium_input() const { return Eigen::VectorXd::Zero(named_.system.inputs()); }
 
 }  // namespace ambid::sim

@@ -23,8 +23,7 @@ class LinearPlant : public Plant {
   // Disturbances enter like the inputs (E = B, names "w_<input name>").
   explicit LinearPlant(NamedSystem named);
   // Disturbances enter through E (states x disturbances), one name per column.
-  LinearPlant(NamedSystem named, Eigen::MatrixXd disturbance_matrix,
-              std::vector<std::string> disturbance_names);
+  LinearPlant(NamedSystem named, Eigen::MatrixXd disturbance_matrix, std::vector<std::string> disturbance_names);
   // Both throw Error on inconsistent sizes or name counts, duplicate names, a non-finite
   // entry, or D != 0 (a Plant's output depends on the state only).
 

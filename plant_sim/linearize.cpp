@@ -10,12 +10,10 @@ namespace ambid::sim {
 namespace {
 
 // Step per variable: relative_step * max(|at_j|, scale_j), scale 1 when none is given.
-Eigen::VectorXd steps(const Eigen::VectorXd& at, const Eigen::VectorXd& scale, double relative,
-                      const char* what) {
+Eigen::VectorXd steps(const Eigen::VectorXd& at, const Eigen::VectorXd& scale, double relative, const char* what) {
   if (scale.size() != 0 && scale.size() != at.size()) {
     std::ostringstream msg;
-    msg << "linearize: " << what << " scale must have " << at.size() << " entries, got "
-        << scale.size();
+    msg << "linearize: " << what << " scale must have " << at.size() << " entries, got " << scale.size();
     throw Error(msg.str());
   }
   Eigen::VectorXd h(at.size());
@@ -41,8 +39,7 @@ ContinuousSystem linearize(const Plant& plant, const LinearizeOptions& options) 
   }
   const Eigen::VectorXd x0 = plant.equilibrium_state();
   const Eigen::VectorXd u0 = plant.equilibrium_input();
-  const Eigen::VectorXd w0 =
-      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(plant.disturbance_names().size()));
+  const Eigen::VectorXd w0 = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(plant.disturbance_names().size()));
   const Eigen::VectorXd hx = steps(x0, options.state_scale, options.relative_step, "state");
   const Eigen::VectorXd hu = steps(u0, options.input_scale, options.relative_step, "input");
   const Eigen::Index n = x0.size(), m = u0.size();

@@ -8,8 +8,8 @@
 
 namespace ambid::sim {
 
-LqrGain dlqr(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
-             const Eigen::MatrixXd& R, const Eigen::MatrixXd& N) {
+LqrGain dlqr(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
+             const Eigen::MatrixXd& N) {
   LqrGain out;
   out.X = solve_dare(A, B, Q, R, N);
   Eigen::MatrixXd cross = A.transpose() * out.X * B;
@@ -19,8 +19,8 @@ LqrGain dlqr(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::Ma
   return out;
 }
 
-ObserverGain predictor_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
-                            const Eigen::MatrixXd& W, const Eigen::MatrixXd& V) {
+ObserverGain predictor_gain(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, const Eigen::MatrixXd& W,
+                            const Eigen::MatrixXd& V) {
   LqrGain dual;
   try {
     dual = dlqr(A.transpose(), C.transpose(), W, V);

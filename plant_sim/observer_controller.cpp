@@ -32,12 +32,11 @@ void require_distinct(const Names& names, const char* what) {
       throw Error(std::string(what) + " names '" + names[i] + "' twice");
 }
 
-void require_shape(const Eigen::MatrixXd& M, Eigen::Index rows, Eigen::Index cols,
-                   const char* name) {
+void require_shape(const Eigen::MatrixXd& M, Eigen::Index rows, Eigen::Index cols, const char* name) {
   if (M.rows() != rows || M.cols() != cols) {
     std::ostringstream msg;
-    msg << "observer controller: option " << name << " must be " << rows << "x" << cols
-        << ", got " << M.rows() << "x" << M.cols();
+    msg << "observer controller: option " << name << " must be " << rows << "x" << cols << ", got " << M.rows() << "x"
+        << M.cols();
     throw Error(msg.str());
   }
 }
@@ -61,8 +60,7 @@ ObserverControllerOptions amb1dof_observer_controller_options() {
   // Spectral radius 0.9913 nominal and at most 0.9918 with R1, R2, kw1 or kw2 off by +-20 %.
   ObserverControllerOptions o;
   o.integral_outputs = {"x"};
-  o.Q = diagonal({1.0 / (1e-5 * 1e-5), 1.0 / (1e-2 * 1e-2), 1.0 / (0.03 * 0.03),
-                  1.0 / (0.03 * 0.03)});
+  o.Q = diagonal({1.0 / (1e-5 * 1e-5), 1.0 / (1e-2 * 1e-2), 1.0 / (0.03 * 0.03), 1.0 / (0.03 * 0.03)});
   o.Q_integral = diagonal({1.0 / (1e-4 * 1e-4)});
   o.R = diagonal({1.0, 1.0});
   // Observer: position and currents measured accurately, model error mostly in the
@@ -73,25 +71,25 @@ ObserverControllerOptions amb1dof_observer_controller_options() {
   return o;
 }
 
-StateSpaceController design_observer_controller(const ContinuousSystem& plant,
-                                                double sample_time, const Names& input_names,
-                                                const Names& output_names,
+StateSpaceController design_observer_controller(const ContinuousSystem& plant, double sample_time,
+                                                const Names& input_names, const Names& output_names,
                                                 const ObserverControllerOptions& options) {
   plant.validate();
   const Eigen::Index n = plant.states(), m = plant.inputs(), q = plant.outputs();
   if (static_cast<Eigen::Index>(input_names.size()) != m)
-    throw Error("observer controller: " + std::to_string(input_names.size()) +
-                " input names for a plant with " + std::to_string(m) + " inputs");
+    throw Error("observer controller: " + std::to_string(input_names.size()) + " input names for a plant with " +
+                std::to_string(m) + " inputs");
   if (static_cast<Eigen::Index>(output_names.size()) != q)
-    throw Error("observer controller: " + std::to_string(output_names.size()) +
-                " output names for a plant with " + std::to_string(q) + " outputs");
+    throw Error("observer controller: " + std::to_string(output_names.size()) + " output names for a plant with " +
+                std::to_string(q) + " outputs");
   Names signals = input_names;
   signals.insert(signals.end(), output_names.begin(), output_names.end());
   require_distinct(signals, "observer controller: plant inputs and outputs");
   if (!plant.D.isZero(0.0))
-    throw Error("observer controller: the plant must be strictly proper (D = 0) for the "
-                "integrator model of seed 000 eq. 41; got ||D|| = " +
-                std::to_string(plant.D.norm()));
+    throw Error(
+        "observer controller: the plant must be strictly proper (D = 0) for the "
+        "integrator model of seed 000 eq. 41; got ||D|| = " +
+        std::to_string(plant.D.norm()));
   if (!(options.observer_pole_radius > 0.0 && options.observer_pole_radius <= 1.0))
     throw Error("observer controller: observer_pole_radius must be in (0, 1], got " +
                 std::to_string(options.observer_pole_radius));
@@ -162,21 +160,19 @@ StateSpaceController design_observer_controller(const ContinuousSystem& plant,
   return c;
 }
 
-DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& input_names,
-                                  const Names& output_names,
+DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& input_names, const Names& output_names,
                                   const StateSpaceController& controller) {
   plant.validate();
   const Eigen::Index n = plant.states(), m = plant.inputs(), q = plant.outputs();
-  if (static_cast<Eigen::Index>(input_names.size()) != m ||
-      static_cast<Eigen::Index>(output_names.size()) != q)
+  if (static_cast<Eigen::Index>(input_names.size()) != m || static_cast<Eigen::Index>(output_names.size()) != q)
     throw Error("closed loop: " + std::to_string(input_names.size()) + " input and " +
-                std::to_string(output_names.size()) + " output names for a plant with " +
-                std::to_string(m) + " inputs and " + std::to_string(q) + " outputs");
+                std::to_string(output_names.size()) + " output names for a plant with " + std::to_string(m) +
+                " inputs and " + std::to_string(q) + " outputs");
   controller.validate(input_names);
   if (std::abs(controller.sample_time - plant.sample_time) > 1e-9 * plant.sample_time) {
     std::ostringstream msg;
-    msg << "closed loop: controller sample time " << controller.sample_time
-        << " s differs from the plant's " << plant.sample_time << " s";
+    msg << "closed loop: controller sample time " << controller.sample_time << " s differs from the plant's "
+        << plant.sample_time << " s";
     throw Error(msg.str());
   }
   const Eigen::Index nc = controller.states();
@@ -193,9 +189,8 @@ DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& inpu
     } else if (iy >= 0) {
       Sy(k, iy) = 1.0;
     } else {
-      throw Error("closed loop: controller input '" + name +
-                  "' is neither a plant input nor a plant output (" + join(input_names) + "; " +
-                  join(output_names) + ")");
+      throw Error("closed loop: controller input '" + name + "' is neither a plant input nor a plant output (" +
+                  join(input_names) + "; " + join(output_names) + ")");
     }
   }
   Eigen::MatrixXd P = Eigen::MatrixXd::Zero(m, no);
@@ -206,8 +201,9 @@ DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const Names& inpu
   const Eigen::MatrixXd loop = Eigen::MatrixXd::Identity(m, m) - P * controller.D * Sy * plant.D;
   const std::optional<Eigen::MatrixXd> loop_inverse = linalg::regular_inverse(loop);
   if (!loop_inverse)
-    throw Error("closed loop: the algebraic loop through the plant's D and the controller's D "
-                "is singular (I - D_c D_p not invertible)");
+    throw Error(
+        "closed loop: the algebraic loop through the plant's D and the controller's D "
+        "is singular (I - D_c D_p not invertible)");
   const Eigen::MatrixXd& M = *loop_inverse;
   Eigen::MatrixXd Ku(m, n + nc);
   Ku << P * controller.D * Sy * plant.C, P * controller.C;

@@ -24,11 +24,11 @@ namespace ambid::sim {
 
 struct ObserverControllerOptions {
   std::vector<std::string> integral_outputs;  // outputs with zero steady-state error (rows of E)
-  Eigen::MatrixXd Q;           // LQR weight on the plant states (n x n)
-  Eigen::MatrixXd Q_integral;  // LQR weight on the integrator states (one per integral output)
-  Eigen::MatrixXd R;           // LQR weight on the plant inputs (m x m)
-  Eigen::MatrixXd W;           // observer design: process covariance (n x n)
-  Eigen::MatrixXd V;           // observer design: measurement covariance (q x q)
+  Eigen::MatrixXd Q;                          // LQR weight on the plant states (n x n)
+  Eigen::MatrixXd Q_integral;                 // LQR weight on the integrator states (one per integral output)
+  Eigen::MatrixXd R;                          // LQR weight on the plant inputs (m x m)
+  Eigen::MatrixXd W;                          // observer design: process covariance (n x n)
+  Eigen::MatrixXd V;                          // observer design: measurement covariance (q x q)
   // Observer speed: the observer poles are placed inside |z| < observer_pole_radius (the dual
   // DARE is solved for A / radius). 1 leaves them where W, V put them. In (0, 1].
   double observer_pole_radius = 1.0;
@@ -44,8 +44,7 @@ ObserverControllerOptions amb1dof_observer_controller_options();
 // [input_names..., output_names...] (the observer uses the applied input u = uf + r), outputs
 // input_names, and sample_time. Throws Error for inconsistent names or weights, an unknown
 // integral output, or when a Riccati equation has no stabilising solution (names which).
-StateSpaceController design_observer_controller(const ContinuousSystem& plant,
-                                                double sample_time,
+StateSpaceController design_observer_controller(const ContinuousSystem& plant, double sample_time,
                                                 const std::vector<std::string>& input_names,
                                                 const std::vector<std::string>& output_names,
                                                 const ObserverControllerOptions& options);
@@ -58,10 +57,8 @@ StateSpaceController design_observer_controller(const ContinuousSystem& plant,
 //   outputs [y; u]
 // Throws Error for an unknown signal name, a sample-time mismatch, D non-zero in a u column,
 // or a singular algebraic loop through plant.D.
-DiscreteSystem linear_closed_loop(const DiscreteSystem& plant,
-                                  const std::vector<std::string>& input_names,
-                                  const std::vector<std::string>& output_names,
-                                  const StateSpaceController& controller);
+DiscreteSystem linear_closed_loop(const DiscreteSystem& plant, const std::vector<std::string>& input_names,
+                                  const std::vector<std::string>& output_names, const StateSpaceController& controller);
 
 // max |eigenvalue of sys.A| (< 1: asymptotically stable).
 double spectral_radius(const DiscreteSystem& sys);

@@ -42,13 +42,11 @@ LoopSystem pid_loop(const PidLoop& loop, double T, const std::string& where) {
   require_finite(loop.ki, where, "ki");
   require_finite(loop.kd, where, "kd");
   const bool integral = loop.ki != 0.0, derivative = loop.kd != 0.0;
-  if (derivative && !(loop.derivative_time_constant > 0.0 &&
-                      std::isfinite(loop.derivative_time_constant)))
-    fail(where, "derivative_time_constant must be positive when kd != 0",
-         loop.derivative_time_constant);
+  if (derivative && !(loop.derivative_time_constant > 0.0 && std::isfinite(loop.derivative_time_constant)))
+    fail(where, "derivative_time_constant must be positive when kd != 0", loop.derivative_time_constant);
   const Eigen::Index n = (integral ? 1 : 0) + (derivative ? 1 : 0);
-  LoopSystem s{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, 1),
-               Eigen::MatrixXd::Zero(1, n), Eigen::MatrixXd::Constant(1, 1, loop.kp)};
+  LoopSystem s{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, 1), Eigen::MatrixXd::Zero(1, n),
+               Eigen::MatrixXd::Constant(1, 1, loop.kp)};
   Eigen::Index k = 0;
   if (integral) {  // I[k+1] = I[k] + T e[k]; term ki I[k]
     s.A(k, k) = 1.0;
@@ -102,8 +100,8 @@ LoopSystem lead_lag_loop(const LeadLagLoop& loop, double T, const std::string& w
 }
 
 template <class Loop, class Discretise>
-StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Names& plant_inputs,
-                              const char* kind, Discretise discretise) {
+StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Names& plant_inputs, const char* kind,
+                              Discretise discretise) {
   require_sample_time(T, kind);
   if (plant_inputs.empty()) throw Error(std::string(kind) + ": no plant inputs named");
   if (loops.empty()) throw Error(std::string(kind) + ": no loops given");
@@ -113,11 +111,9 @@ StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Na
   std::vector<LoopSystem> systems;
   Eigen::Index states = 0;
   for (std::size_t i = 0; i < loops.size(); ++i) {
-    const std::string where = std::string(kind) + " loop " + std::to_string(i) + " ('" +
-                              loops[i].measured + "')";
+    const std::string where = std::string(kind) + " loop " + std::to_string(i) + " ('" + loops[i].measured + "')";
     if (loops[i].measured.empty()) throw Error(where + ": measured signal name is empty");
-    if (index_of(plant_inputs, loops[i].measured) >= 0)
-      throw Error(where + ": measured signal is a plant input");
+    if (index_of(plant_inputs, loops[i].measured) >= 0) throw Error(where + ": measured signal is a plant input");
     if (loops[i].drives.empty()) throw Error(where + ": drives no plant input");
     for (const LoopDrive& drive : loops[i].drives) {
       if (index_of(plant_inputs, drive.input) < 0)
@@ -152,13 +148,12 @@ StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Na
 
 }  // namespace
 
-StateSpaceController pid_controller(const std::vector<PidLoop>& loops, double sample_time,
-                                    const Names& plant_inputs) {
+StateSpaceController pid_controller(const std::vector<PidLoop>& loops, double sample_time, const Names& plant_inputs) {
   return assemble(loops, sample_time, plant_inputs, "PID controller", pid_loop);
 }
 
-StateSpaceController lead_lag_controller(const std::vector<LeadLagLoop>& loops,
-                                         double sample_time, const Names& plant_inputs) {
+StateSpaceController lead_lag_controller(const std::vector<LeadLagLoop>& loops, double sample_time,
+                                         const Names& plant_inputs) {
   return assemble(loops, sample_time, plant_inputs, "lead-lag controller", lead_lag_loop);
 }
 

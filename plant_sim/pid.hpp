@@ -14,8 +14,8 @@
 namespace ambid::sim {
 
 struct LoopDrive {
-  std::string input;   // plant input name
-  double gain = 1.0;   // usually +1 or -1
+  std::string input;  // plant input name
+  double gain = 1.0;  // usually +1 or -1
 };
 
 // PID with filtered derivative, C(s) = kp + ki/s + kd s / (tau s + 1), discretised as
@@ -48,8 +48,7 @@ struct LeadLagLoop {
 // naming an unknown input, a non-positive sample time or time constant, or a non-finite gain.
 StateSpaceController pid_controller(const std::vector<PidLoop>& loops, double sample_time,
                                     const std::vector<std::string>& plant_inputs);
-StateSpaceController lead_lag_controller(const std::vector<LeadLagLoop>& loops,
-                                         double sample_time,
+StateSpaceController lead_lag_controller(const std::vector<LeadLagLoop>& loops, double sample_time,
                                          const std::vector<std::string>& plant_inputs);
 
 }  // namespace ambid::sim

@@ -32,8 +32,8 @@ class Plant {
   // Advances x by one sample with u and w held (zero-order hold) by `substeps` classical RK4
   // steps. The default (integrator.cpp) works for any model; a model on the simulator's hot
   // path overrides it with an allocation-free version of the same scheme.
-  virtual void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                       double sample_time, int substeps) const;
+  virtual void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+                       int substeps) const;
 
   // The equilibrium (state and input) the model is linearised and operated at.
   virtual Eigen::VectorXd equilibrium_state() const = 0;

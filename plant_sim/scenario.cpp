@@ -93,12 +93,15 @@ Excitation make_excitation(const ScenarioOptions& o, Eigen::Index samples, int c
 
 Scenario build_scenario(const ScenarioOptions& o) {
   require(o.plant == "amb1dof_voltage", "unknown plant '" + o.plant + "' (known: amb1dof_voltage)");
-  require(std::isfinite(o.sample_time) && o.sample_time > 0, "sample time must be positive, got " + std::to_string(o.sample_time));
+  require(std::isfinite(o.sample_time) && o.sample_time > 0,
+          "sample time must be positive, got " + std::to_string(o.sample_time));
   require(std::isfinite(o.duration) && o.duration >= 2 * o.sample_time,
           "duration must be at least two samples, got " + std::to_string(o.duration));
   require(std::isfinite(o.amplitude) && o.amplitude >= 0, "amplitude must be >= 0, got " + std::to_string(o.amplitude));
-  for (const auto& [what, value] : {std::pair{"position noise", o.position_noise}, {"current noise", o.current_noise},
-                                    {"force noise", o.force_noise}, {"input limit", o.input_limit}})
+  for (const auto& [what, value] : {std::pair{"position noise", o.position_noise},
+                                    {"current noise", o.current_noise},
+                                    {"force noise", o.force_noise},
+                                    {"input limit", o.input_limit}})
     require(std::isfinite(value) && value >= 0, std::string(what) + " must be >= 0, got " + std::to_string(value));
 
   const Amb1dofParameters nominal = Amb1dofParameters::nominal();
@@ -133,13 +136,14 @@ Scenario build_scenario(const ScenarioOptions& o) {
   const Eigen::Index samples = Eigen::Index(std::llround(o.duration / o.sample_time));
   s.options.samples = samples;
   s.options.seed = o.seed;
-  nlohmann::json simulation = {{"true_parameters", true_parameters.to_map()},
-                               {"seed", o.seed},
-                               {"controller_design", o.controller},
-                               {"noise", {{"x", o.position_noise}, {"i1", o.current_noise}, {"i2", o.current_noise},
-                                          {"Fz", o.force_noise}}}};
+  nlohmann::json simulation = {
+      {"true_parameters", true_parameters.to_map()},
+      {"seed", o.seed},
+      {"controller_design", o.controller},
+      {"noise", {{"x", o.position_noise}, {"i1", o.current_noise}, {"i2", o.current_noise}, {"Fz", o.force_noise}}}};
   for (const auto& e : o.effects)
-    simulation["effects"].push_back({{"effect", e.name}, {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json()},
+    simulation["effects"].push_back({{"effect", e.name},
+                                     {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json()},
                                      {"parameters", e.parameters}});
   if (o.excitation != "none" && o.amplitude > 0) {
     h.r_names = {"r1", "r2"};

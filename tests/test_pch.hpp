@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include "core/error.hpp"

@@ -15,9 +15,7 @@
 namespace ambid {
 namespace {
 
-std::string dims(Eigen::Index rows, Eigen::Index cols) {
-  return std::to_string(rows) + "x" + std::to_string(cols);
-}
+std::string dims(Eigen::Index rows, Eigen::Index cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
@@ -34,25 +32,23 @@ void require_positive_finite(double value, const std::string& key) {
     throw Error(key + " must be a positive finite number of seconds, got " + number_text(value));
 }
 
-void require_shape(const Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols,
-                   const std::string& key, const std::string& meaning) {
+void require_shape(const Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols, const std::string& key,
+                   const std::string& meaning) {
   if (m.rows() != rows || m.cols() != cols)
-    throw Error(key + " must be " + dims(rows, cols) + " (" + meaning + "), got " +
-                dims(m.rows(), m.cols()));
+    throw Error(key + " must be " + dims(rows, cols) + " (" + meaning + "), got " + dims(m.rows(), m.cols()));
 }
 
 void require_finite(const Eigen::MatrixXd& m, const std::string& key) {
   for (Eigen::Index i = 0; i < m.rows(); ++i)
     for (Eigen::Index j = 0; j < m.cols(); ++j)
       if (!std::isfinite(m(i, j)))
-        throw Error(key + "[" + std::to_string(i) + "][" + std::to_string(j) +
-                    "] must be finite, got " + number_text(m(i, j)));
+        throw Error(key + "[" + std::to_string(i) + "][" + std::to_string(j) + "] must be finite, got " +
+                    number_text(m(i, j)));
 }
 
 void require_finite(const Eigen::VectorXd& v, const std::string& key) {
   for (Eigen::Index i = 0; i < v.size(); ++i)
-    if (!std::isfinite(v(i)))
-      throw Error(key + "[" + std::to_string(i) + "] must be finite, got " + number_text(v(i)));
+    if (!std::isfinite(v(i))) throw Error(key + "[" + std::to_string(i) + "] must be finite, got " + number_text(v(i)));
 }
 
 void require_distinct(const std::vector<std::string>& names, const std::string& key) {
@@ -69,8 +65,7 @@ void require_signal_name(const std::string& name, const std::string& key) {
     throw Error(key + " signal name " + quote_excerpt(name) +
                 " contains a comma, quote or line break, which a CSV header cannot hold");
   if (name.front() == ' ' || name.front() == '\t' || name.back() == ' ' || name.back() == '\t')
-    throw Error(key + " signal name " + quote_excerpt(name) +
-                " has leading or trailing whitespace");
+    throw Error(key + " signal name " + quote_excerpt(name) + " has leading or trailing whitespace");
 }
 
 void validate_extra(const nlohmann::json& extra, bool has_controller) {
@@ -85,8 +80,7 @@ void validate_extra(const nlohmann::json& extra, bool has_controller) {
       continue;
     }
     if (!value.is_object())
-      throw Error("extra." + key + " must be an object of unknown " + key + " keys, got " +
-                  value.type_name());
+      throw Error("extra." + key + " must be an object of unknown " + key + " keys, got " + value.type_name());
     if (key == "controller" && !has_controller)
       throw Error("extra.controller holds keys but the experiment has no controller");
     for (const auto& item : value.items())
@@ -104,8 +98,7 @@ std::optional<Eigen::Index> find_sampling_gap(const Eigen::VectorXd& t, double s
 }
 
 void StateSpaceController::validate(const std::vector<std::string>& plant_inputs) const {
-  if (kind != "state_space")
-    throw Error("controller.kind must be 'state_space', got " + quote_excerpt(kind));
+  if (kind != "state_space") throw Error("controller.kind must be 'state_space', got " + quote_excerpt(kind));
   require_positive_finite(sample_time, "controller.sample_time");
   if (inputs.empty()) throw Error("controller.inputs must name at least one signal");
   if (outputs.empty()) throw Error("controller.outputs must name at least one u signal");
@@ -113,8 +106,8 @@ void StateSpaceController::validate(const std::vector<std::string>& plant_inputs
   require_distinct(outputs, "controller.outputs");
   for (const auto& out : outputs)
     if (!contains(plant_inputs, out))
-      throw Error("controller.outputs names '" + out + "', which is not a u signal (signals.u: " +
-                  join(plant_inputs) + ")");
+      throw Error("controller.outputs names '" + out + "', which is not a u signal (signals.u: " + join(plant_inputs) +
+                  ")");
   const Eigen::Index n = A.rows();
   const auto p = static_cast<Eigen::Index>(inputs.size());
   const auto q = static_cast<Eigen::Index>(outputs.size());
@@ -136,9 +129,8 @@ void StateSpaceController::validate(const std::vector<std::string>& plant_inputs
     for (Eigen::Index i = 0; i < q; ++i)
       if (D(i, j) != 0.0)
         throw Error("controller.D column " + std::to_string(j) + " (input '" + in +
-                    "') must be zero: feeding the plant input '" + in +
-                    "' through D is an algebraic loop; got D[" + std::to_string(i) + "][" +
-                    std::to_string(j) + "] = " + number_text(D(i, j)));
+                    "') must be zero: feeding the plant input '" + in + "' through D is an algebraic loop; got D[" +
+                    std::to_string(i) + "][" + std::to_string(j) + "] = " + number_text(D(i, j)));
   }
 }
 
@@ -156,22 +148,15 @@ double Experiment::operating_value(const std::string& signal) const {
 
 Eigen::VectorXd Experiment::operating_values(const std::vector<std::string>& signals) const {
   Eigen::VectorXd values(static_cast<Eigen::Index>(signals.size()));
-  for (std::size_t i = 0; i < signals.size(); ++i)
-    values(static_cast<Eigen::Index>(i)) = operating_value(signals[i]);
+  for (std::size_t i = 0; i < signals.size(); ++i) values(static_cast<Eigen::Index>(i)) = operating_value(signals[i]);
   return values;
 }
 
-Eigen::MatrixXd Experiment::y_deviation() const {
-  return y.rowwise() - operating_values(y_names).transpose();
-}
+Eigen::MatrixXd Experiment::y_deviation() const { return y.rowwise() - operating_values(y_names).transpose(); }
 
-Eigen::MatrixXd Experiment::u_deviation() const {
-  return u.rowwise() - operating_values(u_names).transpose();
-}
+Eigen::MatrixXd Experiment::u_deviation() const { return u.rowwise() - operating_values(u_names).transpose(); }
 
-Eigen::MatrixXd Experiment::r_deviation() const {
-  return r.rowwise() - operating_values(r_names).transpose();
-}
+Eigen::MatrixXd Experiment::r_deviation() const { return r.rowwise() - operating_values(r_names).transpose(); }
 
 Eigen::VectorXd Experiment::signal(const std::string& wanted) const {
   const std::pair<const std::vector<std::string>*, const Eigen::MatrixXd*> groups[] = {
@@ -180,23 +165,21 @@ Eigen::VectorXd Experiment::signal(const std::string& wanted) const {
     const auto it = std::find(names->begin(), names->end(), wanted);
     if (it != names->end()) return values->col(it - names->begin());
   }
-  throw Error("experiment '" + name + "' has no signal '" + wanted + "'; its signals are " +
-              join(signal_names()));
+  throw Error("experiment '" + name + "' has no signal '" + wanted + "'; its signals are " + join(signal_names()));
 }
 
 void Experiment::validate_metadata() const {
   require_positive_finite(sample_time, "sample_time");
   if (plant.model.empty()) throw Error("plant.model must name a plant model, got an empty string");
   for (const auto& [key, value] : plant.parameters)
-    if (!std::isfinite(value))
-      throw Error("plant.parameters." + key + " must be finite, got " + number_text(value));
+    if (!std::isfinite(value)) throw Error("plant.parameters." + key + " must be finite, got " + number_text(value));
 
   if (y_names.empty()) throw Error("signals.y must name at least one output signal");
   if (u_names.empty()) throw Error("signals.u must name at least one plant input signal");
   // u[k] = uf[k] + r[k]: the excitation is a vector over the plant inputs.
   if (!r_names.empty() && r_names.size() != u_names.size())
-    throw Error("signals.r must name one excitation per u signal (" + std::to_string(u_names.size()) +
-                "), got " + std::to_string(r_names.size()));
+    throw Error("signals.r must name one excitation per u signal (" + std::to_string(u_names.size()) + "), got " +
+                std::to_string(r_names.size()));
   const std::pair<const std::vector<std::string>*, const char*> groups[] = {
       {&y_names, "signals.y"}, {&u_names, "signals.u"}, {&r_names, "signals.r"}};
   std::map<std::string, std::string> group_of;
@@ -208,8 +191,7 @@ void Experiment::validate_metadata() const {
     }
 
   for (const auto& [key, value] : operating_point)
-    if (!std::isfinite(value))
-      throw Error("operating_point." + key + " must be finite, got " + number_text(value));
+    if (!std::isfinite(value)) throw Error("operating_point." + key + " must be finite, got " + number_text(value));
   for (const auto* names : {&y_names, &u_names})
     for (const auto& n : *names)
       if (!operating_point.count(n))
@@ -221,11 +203,11 @@ void Experiment::validate_metadata() const {
     controller->validate(u_names);
     for (const auto& in : controller->inputs)
       if (!group_of.count(in))
-        throw Error("controller.inputs names '" + in + "', which is no y, u or r signal (signals: " +
-                    join(signal_names()) + ")");
+        throw Error("controller.inputs names '" + in +
+                    "', which is no y, u or r signal (signals: " + join(signal_names()) + ")");
     if (!(std::abs(controller->sample_time - sample_time) <= 1e-9 * sample_time))
-      throw Error("controller.sample_time " + number_text(controller->sample_time) +
-                  " must equal sample_time " + number_text(sample_time) + " (within 1e-9 relative)");
+      throw Error("controller.sample_time " + number_text(controller->sample_time) + " must equal sample_time " +
+                  number_text(sample_time) + " (within 1e-9 relative)");
   }
   validate_extra(extra.json(), controller.has_value());
 }
@@ -254,8 +236,8 @@ void Experiment::validate() const {
                   " follows t[" + std::to_string(k - 1) + "] = " + number_text(t(k - 1)));
   if (const auto k = find_sampling_gap(t, sample_time))
     throw Error("sampling is not uniform: t[" + std::to_string(*k) + "] - t[" + std::to_string(*k - 1) +
-                "] = " + number_text(t(*k) - t(*k - 1)) + " s, expected sample_time " +
-                number_text(sample_time) + " s within 1 %");
+                "] = " + number_text(t(*k) - t(*k - 1)) + " s, expected sample_time " + number_text(sample_time) +
+                " s within 1 %");
 }
 
 }  // namespace ambid

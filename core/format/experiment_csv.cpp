@@ -154,9 +154,9 @@ void parse_samples_csv(std::string_view text, const ReadOptions& options, Experi
                   std::to_string(header.size()) + " (a ',' decimal point or thousands separator splits a number)");
     const double t = parse_cell(cells[0], lines.number(), "t");
     if (!line_of_row.empty() && !(t > data[data.size() - stride]))
-      throw Error(at(lines.number()) + ": t = " + quote_excerpt(cells[0]) + " is not greater than t = " +
-                  number_text(data[data.size() - stride]) + " on " + at(line_of_row.back()) +
-                  "; t must be strictly increasing");
+      throw Error(at(lines.number()) + ": t = " + quote_excerpt(cells[0]) +
+                  " is not greater than t = " + number_text(data[data.size() - stride]) + " on " +
+                  at(line_of_row.back()) + "; t must be strictly increasing");
     data.push_back(t);
     for (std::size_t s = 0; s < columns.size(); ++s)
       data.push_back(parse_cell(cells[columns[s]], lines.number(), names[s]));
@@ -180,11 +180,11 @@ void parse_samples_csv(std::string_view text, const ReadOptions& options, Experi
                   number_text(T) + " s within 1 % (reading with resampling interpolates onto a uniform grid)");
     resample_uniform(t, values, T, line_of_row.back());
     if (t.size() < 2)
-      throw Error("spans " + number_text(table(rows - 1, 0) - table(0, 0)) +
-                  " s, less than one sample_time " + number_text(T) + " s; resampling leaves 1 sample, at least 2 are needed");
+      throw Error("spans " + number_text(table(rows - 1, 0) - table(0, 0)) + " s, less than one sample_time " +
+                  number_text(T) + " s; resampling leaves 1 sample, at least 2 are needed");
     warnings.push_back("sampling is not uniform (first at " + at(line) + ": " + where + "); resampled " +
-                       std::to_string(rows) + " rows onto " + std::to_string(t.size()) +
-                       " samples every " + number_text(T) + " s by linear interpolation");
+                       std::to_string(rows) + " rows onto " + std::to_string(t.size()) + " samples every " +
+                       number_text(T) + " s by linear interpolation");
   }
   const auto ny = static_cast<Eigen::Index>(e.y_names.size());
   const auto nu = static_cast<Eigen::Index>(e.u_names.size());

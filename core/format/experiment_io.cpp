@@ -5,8 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "core/format/experiment_csv.hpp"
 #include "core/experiment_file.hpp"
+#include "core/format/experiment_csv.hpp"
 #include "core/format/experiment_sidecar.hpp"
 
 namespace ambid {

@@ -39,8 +39,8 @@ StateSpaceController parse_controller(const json& value, json& extra) {
   if (const auto it = c.find("initial_state"); it != c.end()) {
     k.initial_state = as_vector(*it, "controller.initial_state");
     if (k.initial_state.size() != k.states())  // present but empty would silently mean zero
-      throw Error("key `controller.initial_state` must have " + std::to_string(k.states()) +
-                  " entries (states), got " + std::to_string(k.initial_state.size()));
+      throw Error("key `controller.initial_state` must have " + std::to_string(k.states()) + " entries (states), got " +
+                  std::to_string(k.initial_state.size()));
   }
   json unknown = json::object();
   keep_unknown(c, defined_sidecar_keys().at(p), unknown);
@@ -150,9 +150,8 @@ json sidecar_json(const Experiment& e) {
   if (e.controller) {
     const StateSpaceController& k = *e.controller;
     json& c = j["controller"];
-    c = {{"kind", k.kind},          {"sample_time", k.sample_time}, {"inputs", k.inputs},
-         {"outputs", k.outputs},    {"A", matrix_json(k.A)},        {"B", matrix_json(k.B)},
-         {"C", matrix_json(k.C)},   {"D", matrix_json(k.D)}};
+    c = {{"kind", k.kind},        {"sample_time", k.sample_time}, {"inputs", k.inputs},    {"outputs", k.outputs},
+         {"A", matrix_json(k.A)}, {"B", matrix_json(k.B)},        {"C", matrix_json(k.C)}, {"D", matrix_json(k.D)}};
     if (k.initial_state.size() > 0)
       c["initial_state"] = std::vector<double>(k.initial_state.data(), k.initial_state.data() + k.initial_state.size());
   }

@@ -11,9 +11,7 @@ std::string path_of(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
 
-std::string indexed(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
+std::string indexed(const std::string& path, std::size_t i) { return path + "[" + std::to_string(i) + "]"; }
 
 [[noreturn]] void wrong_type(const json& value, const std::string& path, const std::string& expected) {
   throw Error("key `" + path + "` must be " + expected + ", got " + value.type_name() + " " +
@@ -68,8 +66,8 @@ Eigen::MatrixXd as_matrix(const json& value, const std::string& path, Eigen::Ind
     const Eigen::VectorXd row = as_vector(value[static_cast<std::size_t>(i)], row_path);
     if (i == 0) m.resize(rows, row.size());
     if (row.size() != m.cols())
-      throw Error("key `" + row_path + "` has " + std::to_string(row.size()) + " entries, but row 0 of `" +
-                  path + "` has " + std::to_string(m.cols()) + "; every row must have the same length");
+      throw Error("key `" + row_path + "` has " + std::to_string(row.size()) + " entries, but row 0 of `" + path +
+                  "` has " + std::to_string(m.cols()) + "; every row must have the same length");
     m.row(i) = row.transpose();
   }
   return m;

@@ -22,8 +22,8 @@ namespace {
 using nlohmann::json;
 using namespace json_fields;
 
-const std::set<std::string> kTopKeys{"format",   "plant_model", "method",      "sample_time", "discrete",
-                                     "continuous", "parameters", "physical", "uncertainty", "fit"};
+const std::set<std::string> kTopKeys{"format",     "plant_model", "method",   "sample_time", "discrete",
+                                     "continuous", "parameters",  "physical", "uncertainty", "fit"};
 
 // The defined keys inside the objects whose unknown keys are kept under the same name in extra.
 const std::map<std::string, std::set<std::string>> kNestedKeys{
@@ -67,8 +67,8 @@ void validate_system(const System& s, const std::string& path) {
     throw Error("key `" + path + "`: " + e.what());
   }
   if (s.states() == 0 || s.inputs() == 0 || s.outputs() == 0)
-    throw Error("key `" + path + "` must have at least one state, input and output, got " +
-                std::to_string(s.states()) + ", " + std::to_string(s.inputs()) + ", " + std::to_string(s.outputs()));
+    throw Error("key `" + path + "` must have at least one state, input and output, got " + std::to_string(s.states()) +
+                ", " + std::to_string(s.inputs()) + ", " + std::to_string(s.outputs()));
 }
 
 void validate_numbers(const std::map<std::string, double>& numbers, const std::string& path) {

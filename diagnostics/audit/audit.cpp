@@ -38,18 +38,18 @@ std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, dou
                                    const std::vector<double>& mode_f) {
   std::vector<sim::Effect> starts;
   for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
-  for (const auto& p : spec.parameters) {
-    std::map<std::string, double> shape;
-    if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
-    if (channel) shape["channel"] = channel;
-    if (!p.switches) continue;
-    for (double size : {1.0, -1.0, 0.3, -0.3}) {
-      if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
-      auto values = shape;
-      values[p.name] = size * p.scale;
-      starts.push_back(sim::make_effect(spec.name, values));
+    for (const auto& p : spec.parameters) {
+      std::map<std::string, double> shape;
+      if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
+      if (channel) shape["channel"] = channel;
+      if (!p.switches) continue;
+      for (double size : {1.0, -1.0, 0.3, -0.3}) {
+        if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
+        auto values = shape;
+        values[p.name] = size * p.scale;
+        starts.push_back(sim::make_effect(spec.name, values));
+      }
     }
-  }
   return starts;
 }
 
@@ -203,14 +203,14 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
   };
   nlohmann::json findings = nlohmann::json::array();
   for (const auto& f : r.findings)
-    findings.push_back({{"effect", f.effect.name},
-                        {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
-                        {"parameters", f.effect.parameters},
-                        {"nrmse_total_before", f.nrmse_total_before},
-                        {"nrmse_total_after", f.nrmse_total_after},
-                        {"evidence", f.evidence},
-                        {"significance", {{"z", f.test.z}, {"p_value", f.test.p_value},
-                                          {"nrmse2_reduction", f.test.reduction}}}});
+    findings.push_back(
+        {{"effect", f.effect.name},
+         {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
+         {"parameters", f.effect.parameters},
+         {"nrmse_total_before", f.nrmse_total_before},
+         {"nrmse_total_after", f.nrmse_total_after},
+         {"evidence", f.evidence},
+         {"significance", {{"z", f.test.z}, {"p_value", f.test.p_value}, {"nrmse2_reduction", f.test.reduction}}}});
   nlohmann::json correlation = nlohmann::json::object();
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     for (Eigen::Index i = 0; i < r.excitation_correlation.cols(); ++i)
@@ -219,7 +219,8 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
   auto per_pair = [&](const auto& m) {
     nlohmann::json j = nlohmann::json::object();
     for (Eigen::Index i = 0; i < m.rows(); ++i)
-      for (Eigen::Index k = 0; k < m.cols(); ++k) j[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(k)]] = m(i, k);
+      for (Eigen::Index k = 0; k < m.cols(); ++k)
+        j[r.outputs[std::size_t(i)] + "/" + r.inputs[std::size_t(k)]] = m(i, k);
     return j;
   };
   nlohmann::json parts = nlohmann::json::array();
@@ -229,12 +230,13 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
                      {"excitation_rms", p.excitation_rms},
                      {"log_ratio", per_pair(p.log_ratio)},
                      {"log_ratio_se", per_pair(p.log_ratio_se)}});
-  nlohmann::json amplitude = {{"method", "median log|G_meas / G_nominal| per contiguous part, highest vs lowest excitation rms"},
-                              {"determinable", a.determinable},
-                              {"spread", a.spread},
-                              {"parts", parts},
-                              {"z", a.determinable ? per_pair(a.z) : nlohmann::json(nullptr)},
-                              {"dependent", a.dependent}};
+  nlohmann::json amplitude = {
+      {"method", "median log|G_meas / G_nominal| per contiguous part, highest vs lowest excitation rms"},
+      {"determinable", a.determinable},
+      {"spread", a.spread},
+      {"parts", parts},
+      {"z", a.determinable ? per_pair(a.z) : nlohmann::json(nullptr)},
+      {"dependent", a.dependent}};
   if (!a.determinable) amplitude["reason"] = a.reason;
   nlohmann::json frf_ratio = nullptr;
   const ident::Frf& f = r.frfs.ratio_nominal;
@@ -253,9 +255,10 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
           {"frf_ratio", frf_ratio},
           {"residual_excitation_correlation", correlation},
           {"amplitude_dependence", amplitude},
-          {"acceptance", {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
-                          {"false_acceptance_probability", r.false_acceptance},
-                          {"z_threshold", r.z_threshold}}}};
+          {"acceptance",
+           {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
+            {"false_acceptance_probability", r.false_acceptance},
+            {"z_threshold", r.z_threshold}}}};
 }
 
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& r) {

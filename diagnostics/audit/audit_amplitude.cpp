@@ -43,7 +43,8 @@ AmplitudePart analyse_part(const Experiment& measured, const ReplayedLoop& nomin
       std::vector<double> v;
       for (Eigen::Index l = 0; l < m.plant.lines(); ++l)
         if (m.input_coherence.row(l).minCoeff() >= o.min_coherence &&
-            m.plant.variance[std::size_t(l)](i, j) <= o.max_relative_variance * std::norm(m.plant.value[std::size_t(l)](i, j)))
+            m.plant.variance[std::size_t(l)](i, j) <=
+                o.max_relative_variance * std::norm(m.plant.value[std::size_t(l)](i, j)))
           v.push_back(std::log(std::abs(m.plant.value[std::size_t(l)](i, j) / n.plant.value[std::size_t(l)](i, j))));
       p.lines(i, j) = int(v.size());
       if (v.size() >= 3) std::tie(p.log_ratio(i, j), p.log_ratio_se(i, j)) = median_and_se(v);

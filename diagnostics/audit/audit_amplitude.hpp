@@ -12,8 +12,8 @@
 // not depend on the signal content), and noise only scatters it (uncorrelated with r, it does
 // not bias the indirect estimate). Comparing the part of highest excitation rms with the part
 // of lowest: z = (m_high - m_low) / se, the standard error from the lines' spread (median:
-// 1.2533 sd / sqrt(lines / 2), neighbouring Welch lines being correlated). Not determinable (and then not dependent) when the parts'
-// excitation rms differ by less than `min_spread`: a constant-amplitude record cannot tell.
+// 1.2533 sd / sqrt(lines / 2), neighbouring Welch lines being correlated). Not determinable (and then not dependent)
+// when the parts' excitation rms differ by less than `min_spread`: a constant-amplitude record cannot tell.
 #include <string>
 #include <vector>
 
@@ -34,22 +34,22 @@ struct AmplitudePart {
 
 struct AmplitudeDependence {
   bool determinable = false;
-  std::string reason;               // why not, when not determinable
-  std::vector<AmplitudePart> parts;  // in record order
+  std::string reason;                    // why not, when not determinable
+  std::vector<AmplitudePart> parts;      // in record order
   Eigen::Index lowest = 0, highest = 0;  // parts of lowest and highest excitation rms
-  double spread = 0.0;              // their excitation rms ratio
-  Eigen::MatrixXd z;                // outputs x inputs (empty when not determinable)
+  double spread = 0.0;                   // their excitation rms ratio
+  Eigen::MatrixXd z;                     // outputs x inputs (empty when not determinable)
   double max_abs_z = 0.0;
-  bool dependent = false;           // max |z| above `z_threshold`
+  bool dependent = false;  // max |z| above `z_threshold`
 };
 
 struct AmplitudeOptions {
   int parts = 6;
   Eigen::Index segment_samples = 512;  // Welch window within a part
   double min_spread = 1.5;
-  double min_coherence = 0.5;          // of every input with r
+  double min_coherence = 0.5;           // of every input with r
   double max_relative_variance = 0.01;  // var G / |G|^2 of a line used (log bias < 0.5 %)
-  double z_threshold = 4.0;  // over all pairs: beyond what the lines' scatter reaches
+  double z_threshold = 4.0;             // over all pairs: beyond what the lines' scatter reaches
 };
 
 // Error for inconsistent sizes; not determinable when a part is shorter than three Welch

@@ -87,7 +87,8 @@ EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured
   fit.cost = 2.0 * solution.final_cost;  // the solver reports half the sum of squares
   fit.iterations = solution.iterations;
   fit.converged = solution.termination == ident::Termination::converged;
-  if (!std::isfinite(fit.cost)) throw Error("audit: the fit of " + start.name + " could not start from its initial values");
+  if (!std::isfinite(fit.cost))
+    throw Error("audit: the fit of " + start.name + " could not start from its initial values");
   return fit;
 }
 

@@ -13,8 +13,8 @@ struct FitOptions {
 };
 
 struct EffectFit {
-  sim::Effect effect;      // fitted parameters
-  double cost = 0.0;       // sum over outputs of NRMSE^2 on the estimation segment
+  sim::Effect effect;  // fitted parameters
+  double cost = 0.0;   // sum over outputs of NRMSE^2 on the estimation segment
   int iterations = 0;
   bool converged = false;  // Ceres reported convergence (not the iteration limit)
 };

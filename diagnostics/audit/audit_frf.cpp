@@ -67,7 +67,8 @@ std::vector<Eigen::Index> determined_lines(const AuditFrfs& frfs, Eigen::Index i
   std::vector<Eigen::Index> lines;
   if (!frfs.measured.has_variance()) return lines;
   for (Eigen::Index k = 0; k < frfs.measured.lines(); ++k)
-    if (frfs.measured.variance[std::size_t(k)](i, j) <= max_relative_variance * std::norm(frfs.measured.value[std::size_t(k)](i, j)))
+    if (frfs.measured.variance[std::size_t(k)](i, j) <=
+        max_relative_variance * std::norm(frfs.measured.value[std::size_t(k)](i, j)))
       lines.push_back(k);
   return lines;
 }

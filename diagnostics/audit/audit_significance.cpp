@@ -64,7 +64,8 @@ ImprovementTest improvement_test(const Eigen::MatrixXd& measured, const Eigen::M
 }
 
 double acceptance_threshold(double alpha, int candidates) {
-  if (!(alpha > 0.0 && alpha < 1.0)) throw Error("audit: false-acceptance probability must be in (0, 1), got " + std::to_string(alpha));
+  if (!(alpha > 0.0 && alpha < 1.0))
+    throw Error("audit: false-acceptance probability must be in (0, 1), got " + std::to_string(alpha));
   if (candidates < 1) throw Error("audit: at least one candidate is needed for an acceptance threshold");
   // Inverse of the upper normal tail by bisection (monotone, 60 halvings are exact to double).
   const double tail = alpha / double(candidates);

@@ -60,7 +60,8 @@ Line strongest_line(const Eigen::VectorXd& signal, double sample_time, double f_
   Eigen::Index best = -1;
   for (Eigen::Index b = 1; b < s.frequency.size(); ++b)
     if (s.frequency[b] >= f_lo && s.frequency[b] <= f_hi && (best < 0 || s.power(b, 0) > s.power(best, 0))) best = b;
-  if (best < 0) throw Error("audit: no spectral line between " + std::to_string(f_lo) + " and " + std::to_string(f_hi) + " Hz");
+  if (best < 0)
+    throw Error("audit: no spectral line between " + std::to_string(f_lo) + " and " + std::to_string(f_hi) + " Hz");
   const double bin = s.frequency[1], T = double(signal.size()) * sample_time;
   const Eigen::VectorXd centred = signal.array() - signal.mean();
   double f_best = s.frequency[best], m_best = -1.0;
@@ -82,12 +83,14 @@ std::vector<double> spectral_peaks(const Eigen::VectorXd& signal, double sample_
   std::vector<double> peaks;
   const double bin = s.frequency[1];
   for (std::size_t i = 0; i < maxima.size() && int(i) < count; ++i)
-    peaks.push_back(strongest_line(signal, sample_time, s.frequency[maxima[i]] - bin, s.frequency[maxima[i]] + bin).frequency);
+    peaks.push_back(
+        strongest_line(signal, sample_time, s.frequency[maxima[i]] - bin, s.frequency[maxima[i]] + bin).frequency);
   if (peaks.empty()) peaks.push_back(0.5 * (f_lo + f_hi));
   return peaks;
 }
 
-double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation, Eigen::Index max_lag) {
+double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation,
+                              Eigen::Index max_lag) {
   const Eigen::Index N = std::min(residual.size(), excitation.size());
   const Eigen::VectorXd e = residual.head(N).array() - residual.head(N).mean();
   const Eigen::VectorXd r = excitation.head(N).array() - excitation.head(N).mean();

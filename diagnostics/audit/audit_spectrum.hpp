@@ -31,7 +31,6 @@ std::vector<double> spectral_peaks(const Eigen::VectorXd& signal, double sample_
                                    int count);
 
 // max over lags 0..max_lag of |correlation coefficient| between residual[k] and excitation[k - lag].
-double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation,
-                              Eigen::Index max_lag);
+double excitation_correlation(const Eigen::VectorXd& residual, const Eigen::VectorXd& excitation, Eigen::Index max_lag);
 
 }  // namespace ambid::diag

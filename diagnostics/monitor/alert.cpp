@@ -37,10 +37,14 @@ double require_number(const nlohmann::json& v, const char* key) {
 
 std::string_view to_string(Level level) {
   switch (level) {
-    case Level::ok: return "OK";
-    case Level::warn: return "WARN";
-    case Level::error: return "ERROR";
-    case Level::stale: return "STALE";
+    case Level::ok:
+      return "OK";
+    case Level::warn:
+      return "WARN";
+    case Level::error:
+      return "ERROR";
+    case Level::stale:
+      return "STALE";
   }
   throw Error("unknown alert level value " + std::to_string(static_cast<int>(level)));
 }

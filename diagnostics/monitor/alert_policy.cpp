@@ -43,8 +43,8 @@ Level AlertPolicy::level(const SeriesStatus& status, Level episode) const {
   return episode == Level::error ? Level::error : now;
 }
 
-std::string change_message(const Isolation& isolation, const SeriesStatus& status,
-                           const AlertPolicy& policy, std::size_t slope_window) {
+std::string change_message(const Isolation& isolation, const SeriesStatus& status, const AlertPolicy& policy,
+                           std::size_t slope_window) {
   std::string text = isolation.subject;
   if (isolation.shared) text += ": " + isolation.parameter;
   text += " " + percent(status.relative) + " % " + (status.relative >= 0.0 ? "above" : "below") + " baseline";

@@ -29,8 +29,8 @@ struct AlertPolicy {
 
 // "coil 1 resistance 20 % above baseline (step)"; for a fault shared by several parameters
 // "position sensor gain (kr1, kr2 alike): kr1 5.0 % above baseline (step)".
-std::string change_message(const Isolation& isolation, const SeriesStatus& status,
-                           const AlertPolicy& policy, std::size_t slope_window);
+std::string change_message(const Isolation& isolation, const SeriesStatus& status, const AlertPolicy& policy,
+                           std::size_t slope_window);
 // "coil 1 resistance within baseline", "... back within baseline", "... (estimates resumed)",
 // "coil 1 resistance: learning baseline (12 of 50 windows)".
 std::string ok_message(std::string_view subject, const SeriesStatus& status, Level previous,

@@ -25,9 +25,7 @@ void require_spread(double value, const char* name) {
 
 }  // namespace
 
-std::string_view to_string(BaselineOrigin origin) {
-  return origin == BaselineOrigin::learned ? "learned" : "given";
-}
+std::string_view to_string(BaselineOrigin origin) { return origin == BaselineOrigin::learned ? "learned" : "given"; }
 
 BaselineOrigin parse_baseline_origin(std::string_view text) {
   if (text == "learned") return BaselineOrigin::learned;
@@ -37,8 +35,7 @@ BaselineOrigin parse_baseline_origin(std::string_view text) {
 
 void Baseline::validate() const {
   if (mean == 0.0 || !std::isfinite(mean))
-    throw Error("baseline: mean must be non-zero and finite (changes are relative to it), got " +
-                std::to_string(mean));
+    throw Error("baseline: mean must be non-zero and finite (changes are relative to it), got " + std::to_string(mean));
   require_spread(extra_spread, "extra spread");
   require_spread(mean_sigma, "mean sigma");
   require_spread(reported_sigma, "reported sigma");
@@ -80,9 +77,10 @@ Baseline learn_baseline(std::span<const double> values, std::span<const double> 
   const double observed = 1.4826 * median(abs_dev);
   b.reported_sigma = median({sigmas.begin(), sigmas.end()});
   if (b.reported_sigma == 0.0 && values.size() < kMinSpreadLearningWindows)
-    throw InsufficientData("baseline: the estimates report no sigma, so the scatter of the windows is the whole "
-                           "sigma_eff; learning it needs at least " + std::to_string(kMinSpreadLearningWindows) +
-                           " windows, got " + std::to_string(values.size()));
+    throw InsufficientData(
+        "baseline: the estimates report no sigma, so the scatter of the windows is the whole "
+        "sigma_eff; learning it needs at least " +
+        std::to_string(kMinSpreadLearningWindows) + " windows, got " + std::to_string(values.size()));
   if (b.reported_sigma == 0.0 && !(observed > 0.0))
     throw InsufficientData("baseline: the estimates report no sigma and the " + std::to_string(values.size()) +
                            " windows do not scatter (median absolute deviation 0): no sigma_eff can be learned");

@@ -84,8 +84,7 @@ void SlopeTest::update(double time, double value, double sigma_eff) {
   require(sigma_eff > 0.0 && std::isfinite(sigma_eff),
           "slope test: sigma must be positive and finite, got " + std::to_string(sigma_eff));
   if (!points_.empty() && !(time > points_.back().time))
-    throw Error("slope test: time " + std::to_string(time) + " does not follow " +
-                std::to_string(points_.back().time));
+    throw Error("slope test: time " + std::to_string(time) + " does not follow " + std::to_string(points_.back().time));
   points_.push_back({time, value, 1.0 / (sigma_eff * sigma_eff)});
   if (points_.size() > config_.window) points_.pop_front();
   if (!ready()) return;

@@ -51,7 +51,7 @@
 namespace ambid::diag {
 
 struct CusumConfig {
-  double k = 0.5;  // reference value, in sigma_eff
+  double k = 0.5;   // reference value, in sigma_eff
   double h = 12.0;  // decision interval
   double clear_level = 6.0;
   std::size_t clear_windows = 5;

@@ -9,8 +9,8 @@
 namespace ambid::diag {
 namespace {
 
-Alert make_alert(double time, const std::string& plant_id, const std::string& parameter, Level level,
-                 std::string fault, std::optional<int> channel, double value, const std::optional<Baseline>& baseline,
+Alert make_alert(double time, const std::string& plant_id, const std::string& parameter, Level level, std::string fault,
+                 std::optional<int> channel, double value, const std::optional<Baseline>& baseline,
                  std::string message) {
   Alert a;
   a.time = time;
@@ -33,8 +33,7 @@ void EngineConfig::validate() const {
   isolation.validate();
 }
 
-DiagnosticsEngine::DiagnosticsEngine(TrendStore& store, const EngineConfig& config)
-    : store_(store), config_(config) {
+DiagnosticsEngine::DiagnosticsEngine(TrendStore& store, const EngineConfig& config) : store_(store), config_(config) {
   config_.validate();
 }
 
@@ -118,8 +117,8 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
     // Every parameter past learning enters the fit: one a fault predicts to move and that did
     // not speaks against that fault.
     if (!status.learning)
-      deviations.push_back({key.second, status.relative, status.relative_sigma,
-                       level == Level::warn || level == Level::error});
+      deviations.push_back(
+          {key.second, status.relative, status.relative_sigma, level == Level::warn || level == Level::error});
   }
   const std::vector<Isolation> isolations = isolate(deviations, config_.isolation);
 
@@ -136,11 +135,11 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
     s.episode = c.level == Level::ok ? Level::ok : std::max(s.episode, c.level);
     if (c.level == s.level && fault == s.fault && channel == s.channel) continue;
     const bool changed = isolation != isolations.end();
-    alerts.push_back(make_alert(
-        time, plant_id, c.key->second, c.level, fault, channel, changed ? c.status.level : s.last_value,
-        s.monitor.baseline(),
-        changed ? change_message(*isolation, c.status, config_.policy, config_.monitor.slope.window)
-                : ok_message(s.role.subject, c.status, s.level, config_.monitor.learning_windows)));
+    alerts.push_back(make_alert(time, plant_id, c.key->second, c.level, fault, channel,
+                                changed ? c.status.level : s.last_value, s.monitor.baseline(),
+                                changed
+                                    ? change_message(*isolation, c.status, config_.policy, config_.monitor.slope.window)
+                                    : ok_message(s.role.subject, c.status, s.level, config_.monitor.learning_windows)));
     s.level = c.level;
     s.fault = std::move(fault);
     s.channel = channel;

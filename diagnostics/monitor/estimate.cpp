@@ -10,9 +10,12 @@ namespace ambid::diag {
 
 std::string_view to_string(Source source) {
   switch (source) {
-    case Source::sim: return "sim";
-    case Source::replay: return "replay";
-    case Source::rig: return "rig";
+    case Source::sim:
+      return "sim";
+    case Source::replay:
+      return "replay";
+    case Source::rig:
+      return "rig";
   }
   throw Error("unknown plant source value " + std::to_string(static_cast<int>(source)));
 }

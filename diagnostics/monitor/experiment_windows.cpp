@@ -29,8 +29,7 @@ std::vector<Experiment> split_experiment(const Experiment& experiment, Eigen::In
     w.u = experiment.u.middleRows(first, window_samples);
     if (experiment.r.size()) w.r = experiment.r.middleRows(first, window_samples);
     windows.push_back(std::move(w));
-    for (Eigen::Index s = first; s < first + window_samples; ++s)
-      state = k.A * state + k.B * v.row(s).transpose();
+    for (Eigen::Index s = first; s < first + window_samples; ++s) state = k.A * state + k.B * v.row(s).transpose();
   }
   return windows;
 }

@@ -14,10 +14,10 @@
 namespace ambid::diag {
 namespace {
 
-constexpr std::string_view kFaults[] = {
-    "coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current",
-    "sensor_delay",    "sensor_gain",    "flexible_mode",       "magnetic_saturation",
-    "air_gap",         "rotor_mass",     "harmonic_disturbance", "force_factor"};
+constexpr std::string_view kFaults[] = {"coil_resistance", "amplifier_gain",       "amplifier_bandwidth",
+                                        "eddy_current",    "sensor_delay",         "sensor_gain",
+                                        "flexible_mode",   "magnetic_saturation",  "air_gap",
+                                        "rotor_mass",      "harmonic_disturbance", "force_factor"};
 
 struct Role {
   std::string_view parameter;
@@ -26,12 +26,9 @@ struct Role {
 
 // The monitored parameters, in their order, and the role of each (the one list of them).
 const Role kRoles[] = {
-    {"R1", {"coil_resistance", 1, "coil 1 resistance"}},
-    {"R2", {"coil_resistance", 2, "coil 2 resistance"}},
-    {"kw1", {"amplifier_gain", 1, "amplifier 1 gain"}},
-    {"kw2", {"amplifier_gain", 2, "amplifier 2 gain"}},
-    {"kr1", {"force_factor", 1, "coil 1 force factor"}},
-    {"kr2", {"force_factor", 2, "coil 2 force factor"}},
+    {"R1", {"coil_resistance", 1, "coil 1 resistance"}},     {"R2", {"coil_resistance", 2, "coil 2 resistance"}},
+    {"kw1", {"amplifier_gain", 1, "amplifier 1 gain"}},      {"kw2", {"amplifier_gain", 2, "amplifier 2 gain"}},
+    {"kr1", {"force_factor", 1, "coil 1 force factor"}},     {"kr2", {"force_factor", 2, "coil 2 force factor"}},
     {"ks", {"air_gap", std::nullopt, "negative stiffness"}},
 };
 
@@ -111,7 +108,8 @@ ParameterRole parameter_role(std::string_view parameter) {
     if (r.parameter == parameter) return r.role;
   std::string monitored;
   for (const Role& r : kRoles) monitored += (monitored.empty() ? "" : ", ") + std::string(r.parameter);
-  throw Error("diagnostics: parameter '" + std::string(parameter) + "' is not monitored (monitored: " + monitored + ")");
+  throw Error("diagnostics: parameter '" + std::string(parameter) + "' is not monitored (monitored: " + monitored +
+              ")");
 }
 
 const std::vector<std::string>& monitored_amb1dof_parameters() {
@@ -124,8 +122,8 @@ const std::vector<std::string>& monitored_amb1dof_parameters() {
 }
 
 void IsolationConfig::validate() const {
-  for (const auto& [name, value] : {std::pair{"tolerance", tolerance}, {"sigma_floor", sigma_floor},
-                                    {"ambiguity", ambiguity}})
+  for (const auto& [name, value] :
+       {std::pair{"tolerance", tolerance}, {"sigma_floor", sigma_floor}, {"ambiguity", ambiguity}})
     if (!(value >= 0.0) || !std::isfinite(value))
       throw Error(std::string("fault isolation: ") + name + " must be non-negative and finite, got " +
                   std::to_string(value));
@@ -147,8 +145,7 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const I
   std::set<std::string_view> seen;
   for (const Deviation& d : deviations) {
     parameter_role(d.parameter);
-    if (!seen.insert(d.parameter).second)
-      throw Error("fault isolation: parameter " + d.parameter + " given twice");
+    if (!seen.insert(d.parameter).second) throw Error("fault isolation: parameter " + d.parameter + " given twice");
     if (!std::isfinite(d.relative) || !(d.relative_sigma >= 0.0) || !std::isfinite(d.relative_sigma))
       throw Error("fault isolation: deviation of " + d.parameter + " is not finite or has a negative sigma (" +
                   std::to_string(d.relative) + " +- " + std::to_string(d.relative_sigma) + ")");
@@ -216,7 +213,8 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const I
     }
     const FaultHypothesis& h = hyp[*named];
     // The hypothesis is this parameter's own fault under its own name: the alert needs no more.
-    const bool own = h.own.size() == 1 && h.own.front() == d.parameter && h.subject == parameter_role(d.parameter).subject;
+    const bool own =
+        h.own.size() == 1 && h.own.front() == d.parameter && h.subject == parameter_role(d.parameter).subject;
     result.push_back({d.parameter, h.fault, h.channel, h.subject, !own});
   }
   return result;

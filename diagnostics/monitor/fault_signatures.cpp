@@ -118,8 +118,7 @@ std::map<std::string, double> settled_parameters(const Experiment& header,
   lin.state_scale = plant.plant().state_scale();
   lin.input_scale = plant.plant().input_scale();
   const ContinuousSystem sys = ident::amb1dof_physical_coordinates(sim::linearize(plant, lin));
-  const auto physical =
-      sim::amb1dof_physical_from_structure(sim::amb1dof_structure_parameters(sys), nominal).to_map();
+  const auto physical = sim::amb1dof_physical_from_structure(sim::amb1dof_structure_parameters(sys), nominal).to_map();
   std::map<std::string, double> out;
   for (const std::string& name : monitored_amb1dof_parameters()) out[name] = physical.at(name);
   return out;

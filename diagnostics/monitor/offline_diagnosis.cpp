@@ -10,9 +10,8 @@ namespace ambid::diag {
 OfflineDiagnosis diagnose_offline(const std::vector<EstimateWindow>& windows, std::size_t baseline_windows,
                                   const std::filesystem::path& store, EngineConfig config) {
   if (baseline_windows < kMinLearningWindows)
-    throw Error("offline diagnosis: the baseline has " + std::to_string(baseline_windows) +
-                " windows, at least " + std::to_string(kMinLearningWindows) +
-                " are needed to learn its mean and scatter");
+    throw Error("offline diagnosis: the baseline has " + std::to_string(baseline_windows) + " windows, at least " +
+                std::to_string(kMinLearningWindows) + " are needed to learn its mean and scatter");
   std::map<OfflineDiagnosis::Key, std::size_t> counts;
   for (const EstimateWindow& w : windows)
     for (const ParameterEstimate& e : w.estimates) ++counts[{w.plant_id, e.parameter}];

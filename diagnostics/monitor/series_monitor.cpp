@@ -26,8 +26,9 @@ SeriesMonitor::SeriesMonitor(const MonitorConfig& config, std::optional<Baseline
 
 bool SeriesMonitor::update(double time, double value, double sigma) {
   if (!std::isfinite(time) || !std::isfinite(value) || !(sigma >= 0.0) || !std::isfinite(sigma))
-    throw Error("monitor: estimate at t=" + std::to_string(time) + " needs a finite value and a non-negative sigma, got " +
-                std::to_string(value) + " +- " + std::to_string(sigma));
+    throw Error("monitor: estimate at t=" + std::to_string(time) +
+                " needs a finite value and a non-negative sigma, got " + std::to_string(value) + " +- " +
+                std::to_string(sigma));
   if (last_time_ && !(time > *last_time_))
     throw Error("monitor: estimate at t=" + std::to_string(time) + " does not follow t=" + std::to_string(*last_time_));
   last_time_ = time;
@@ -42,7 +43,8 @@ bool SeriesMonitor::update(double time, double value, double sigma) {
   }
   const double sigma_eff = baseline_->sigma_eff(sigma);
   if (!(sigma_eff > 0.0))
-    throw Error("monitor: estimate at t=" + std::to_string(time) + " reports sigma 0 and the baseline learned no "
+    throw Error("monitor: estimate at t=" + std::to_string(time) +
+                " reports sigma 0 and the baseline learned no "
                 "extra spread: no sigma_eff to test it with");
   const bool was_step = cusum_.alarmed();
   cusum_.update(baseline_->z(value, sigma), config_.cusum.baseline_allowance * baseline_->mean_sigma / sigma_eff);

@@ -27,13 +27,13 @@ struct SeriesStatus {
   std::size_t learned_windows = 0;  // windows collected so far while learning
   Change change = Change::none;     // a step alarm takes precedence over a drift alarm
   // Current level: the latest value (no change), the mean since the estimated change point
-  // among the last slope.window windows (step), the fitted trend at the latest time (drift); its change relative to the baseline
-  // mean and the one-sigma uncertainty of that relative change (0 while learning).
+  // among the last slope.window windows (step), the fitted trend at the latest time (drift); its change relative to the
+  // baseline mean and the one-sigma uncertainty of that relative change (0 while learning).
   double level = 0.0;
   double relative = 0.0;
   double relative_sigma = 0.0;
-  std::size_t step_windows = 0;   // windows the step alarm has been raised
-  double drift_relative = 0.0;    // fitted relative change over the slope window
+  std::size_t step_windows = 0;  // windows the step alarm has been raised
+  double drift_relative = 0.0;   // fitted relative change over the slope window
 };
 
 class SeriesMonitor {

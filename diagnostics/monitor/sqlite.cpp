@@ -119,9 +119,7 @@ std::string Statement::Run::column_text(int index) const {
               : std::string();
 }
 
-bool Statement::Run::column_is_null(int index) const {
-  return sqlite3_column_type(s_.stmt_, index) == SQLITE_NULL;
-}
+bool Statement::Run::column_is_null(int index) const { return sqlite3_column_type(s_.stmt_, index) == SQLITE_NULL; }
 
 Transaction::Transaction(Connection& db, std::string_view operation) : db_(db), operation_(operation) {
   db_.exec("BEGIN IMMEDIATE", "begin " + operation_);

@@ -123,8 +123,7 @@ struct Connected {
   sqlite::Connection db;
 };
 
-constexpr std::string_view kAlertColumns =
-    "time, plant_id, level, fault, channel, parameter, value, baseline, message";
+constexpr std::string_view kAlertColumns = "time, plant_id, level, fault, channel, parameter, value, baseline, message";
 
 std::string select_alerts(std::string_view where) {
   return "SELECT " + std::string(kAlertColumns) + " FROM alerts " + std::string(where) +
@@ -146,22 +145,19 @@ struct TrendStore::Impl {
   Connected connected;
   sqlite::Connection& db = connected.db;
   sqlite::Statement insert_estimate{
-      db,
-      "INSERT INTO estimates (time, plant_id, source, parameter, value, sigma) VALUES (?, ?, ?, ?, ?, ?)",
+      db, "INSERT INTO estimates (time, plant_id, source, parameter, value, sigma) VALUES (?, ?, ?, ?, ?, ?)",
       "insert estimate"};
   sqlite::Statement insert_alert{
-      db, "INSERT INTO alerts (" + std::string(kAlertColumns) + ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
-      "insert alert"};
+      db, "INSERT INTO alerts (" + std::string(kAlertColumns) + ") VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)", "insert alert"};
   sqlite::Statement replace_baseline{
       db,
       "INSERT OR REPLACE INTO baselines (plant_id, parameter, mean, extra_spread, mean_sigma, reported_sigma, "
       "windows, origin, time) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)",
       "store baseline"};
-  sqlite::Statement select_history{
-      db,
-      "SELECT time, plant_id, source, parameter, value, sigma FROM estimates "
-      "WHERE plant_id = ? AND parameter = ? AND time >= ? AND time <= ? ORDER BY time, id",
-      "read history"};
+  sqlite::Statement select_history{db,
+                                   "SELECT time, plant_id, source, parameter, value, sigma FROM estimates "
+                                   "WHERE plant_id = ? AND parameter = ? AND time >= ? AND time <= ? ORDER BY time, id",
+                                   "read history"};
   sqlite::Statement select_alerts_all{db, select_alerts(""), "read alerts"};
   sqlite::Statement select_alerts_plant{db, select_alerts("WHERE plant_id = ?"), "read alerts of a plant"};
   sqlite::Statement select_baseline{
@@ -209,8 +205,8 @@ void TrendStore::write(const Batch& batch) {
   tx.commit();
 }
 
-std::vector<StoredEstimate> TrendStore::history(const std::string& plant_id, const std::string& parameter,
-                                                double from, double to) const {
+std::vector<StoredEstimate> TrendStore::history(const std::string& plant_id, const std::string& parameter, double from,
+                                                double to) const {
   auto run = impl_->select_history.run();
   run.bind(1, plant_id).bind(2, parameter).bind(3, from).bind(4, to);
   std::vector<StoredEstimate> rows;

@@ -29,21 +29,22 @@ double max_abs_difference(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { 
 
 }  // namespace
 
-ObserverIntegralGains observer_integral_gains(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
-                                              const Eigen::MatrixXd& D, Index n, Index m) {
+ObserverIntegralGains observer_integral_gains(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                              const Eigen::MatrixXd& C, const Eigen::MatrixXd& D, Index n, Index m) {
   const Index l = A.rows(), ni = l - n, p = B.cols() - m;
   if (ni < 0 || p < 1 || A.cols() != l || B.rows() != l || C.rows() != m || C.cols() != l || D.rows() != m ||
       D.cols() != m + p)
     throw Error("observer/integral controller: sizes A " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
-                ", B " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) + " do not fit " + std::to_string(n) +
-                " plant states and " + std::to_string(m) + " plant inputs");
+                ", B " + std::to_string(B.rows()) + "x" + std::to_string(B.cols()) + " do not fit " +
+                std::to_string(n) + " plant states and " + std::to_string(m) + " plant inputs");
   const double scale = std::max({1.0, A.cwiseAbs().maxCoeff(), B.cwiseAbs().maxCoeff()});
   const double tol = 1e-12 * scale;
   if (ni > 0) {
     if (A.bottomLeftCorner(ni, n).cwiseAbs().maxCoeff() > tol ||
         max_abs_difference(A.bottomRightCorner(ni, ni), Eigen::MatrixXd::Identity(ni, ni)) > tol ||
         A.topRightCorner(n, ni).cwiseAbs().maxCoeff() > tol)
-      throw Error("observer/integral controller: A is not [A_o 0; 0 I] with " + std::to_string(ni) + " integrator state(s)");
+      throw Error("observer/integral controller: A is not [A_o 0; 0 I] with " + std::to_string(ni) +
+                  " integrator state(s)");
     if (B.bottomLeftCorner(ni, m).cwiseAbs().maxCoeff() > tol)
       throw Error("observer/integral controller: the integrator states read the plant input (B is not [B_o L; 0 -E])");
   }
@@ -64,8 +65,8 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Eigen::MatrixXd& y, const 
                                                 const Eigen::VectorXd& integrator_initial, double sample_time,
                                                 double L1, double L2, double m, const DeadbeatOptions& options) {
   if (y.cols() != 3 || u.cols() != 2)
-    throw Error("amb1dof deadbeat identification: needs y = [x, i1, i2] and u = [u1, u2], got " + std::to_string(y.cols()) +
-                " and " + std::to_string(u.cols()) + " columns");
+    throw Error("amb1dof deadbeat identification: needs y = [x, i1, i2] and u = [u1, u2], got " +
+                std::to_string(y.cols()) + " and " + std::to_string(u.cols()) + " columns");
   for (const double v : {L1, L2, m})
     if (!(v > 0.0) || !std::isfinite(v))
       throw Error("amb1dof deadbeat identification: L1, L2 and m must be positive, got " + std::to_string(v));
@@ -96,7 +97,8 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Eigen::MatrixXd& y, const 
     Eigen::VectorXd plus = p, minus = p;
     plus(j) += h;
     minus(j) -= h;
-    J.col(j) = (amb1dof_structure_vector(continuous_of(plus, d)) - amb1dof_structure_vector(continuous_of(minus, d))) / (2.0 * h);
+    J.col(j) = (amb1dof_structure_vector(continuous_of(plus, d)) - amb1dof_structure_vector(continuous_of(minus, d))) /
+               (2.0 * h);
   }
   out.parameter_covariance = J * out.realization.parameter_covariance * J.transpose();
 
@@ -116,7 +118,8 @@ Amb1dofIdentification identify_amb1dof_deadbeat(const Eigen::MatrixXd& y, const 
 Amb1dofIdentification identify_amb1dof_deadbeat(const Experiment& e, const DeadbeatOptions& options) {
   if (e.plant.model != "amb1dof_voltage")
     throw Error("amb1dof deadbeat identification: plant.model is '" + e.plant.model + "', expected 'amb1dof_voltage'");
-  if (!e.controller) throw Error("amb1dof deadbeat identification: the experiment has no controller (it must be known)");
+  if (!e.controller)
+    throw Error("amb1dof deadbeat identification: the experiment has no controller (it must be known)");
   const std::vector<std::string> un = {"u1", "u2"}, yn = {"x", "i1", "i2"};
   const LoopSignals s = loop_signals(e, yn, un, "amb1dof deadbeat identification");
   const KnownController k = known_controller(*e.controller, un, yn);

@@ -27,8 +27,8 @@
 namespace ambid::ident {
 
 struct Amb1dofIdentification {
-  DeadbeatRealization realization;   // discrete, physical coordinates
-  ContinuousSystem continuous;       // Ac, Bc, C, D
+  DeadbeatRealization realization;                      // discrete, physical coordinates
+  ContinuousSystem continuous;                          // Ac, Bc, C, D
   std::map<std::string, double> parameters;             // v1..v9
   std::map<std::string, double> parameter_uncertainty;  // one sigma, same keys
   Eigen::MatrixXd parameter_covariance;                 // 9 x 9, v1..v9
@@ -45,8 +45,9 @@ struct Amb1dofIdentification {
 struct ObserverIntegralGains {
   Eigen::MatrixXd F, Fe, E;
 };
-ObserverIntegralGains observer_integral_gains(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
-                                              const Eigen::MatrixXd& D, Eigen::Index plant_states, Eigen::Index plant_inputs);
+ObserverIntegralGains observer_integral_gains(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                              const Eigen::MatrixXd& C, const Eigen::MatrixXd& D,
+                                              Eigen::Index plant_states, Eigen::Index plant_inputs);
 
 // From matrices: y = [x, i1, i2], u = [u1, u2], uf = u - r (deviations, samples x channels),
 // the gains of the controller and its integrator state at the first sample (empty: zero),

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/LU>  // closed-form fixed-size 3x3 inverse only (kalman_predictor_gain)
 #include <ceres/jet.h>  // dual numbers for the automatic derivatives; the solver is nonlinear_least_squares.hpp
+#include <Eigen/LU>     // closed-form fixed-size 3x3 inverse only (kalman_predictor_gain)
 
 #include "core/error.hpp"
 #include "identifier/amb1dof_structure.hpp"
@@ -19,7 +19,7 @@ namespace {
 using Index = Eigen::Index;
 using Vector9 = Eigen::Matrix<double, 9, 1>;
 const std::string kWho = "prediction-error identification";
-constexpr int kTaylorTerms = 12;  // of expm after scaling to norm <= 0.25: truncation < 1e-16
+constexpr int kTaylorTerms = 12;          // of expm after scaling to norm <= 0.25: truncation < 1e-16
 constexpr int kWeightingIterations = 15;  // pass 1 only sets the output weights
 
 inline double scalar_part(double x) { return x; }
@@ -206,10 +206,15 @@ Eigen::Matrix<double, 4, 3> kalman_predictor_gain(const Eigen::Matrix4d& A, cons
 
 Record make_record(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time, const Vector9& v,
                    const Eigen::Vector3d& spread) {
-  Record rec{y, u, sample_time, v,
+  Record rec{y,
+             u,
+             sample_time,
+             v,
              Eigen::Vector3d(std::abs(v(0)) * spread(0), std::abs(v(4)) * spread(1), std::abs(v(6)) * spread(2)),
              Eigen::Vector4d(spread(0), spread(0) * std::sqrt(std::abs(v(0))), spread(1), spread(2)),
-             Eigen::Matrix<double, 4, 3>::Zero(), Eigen::Matrix<double, 4, 3>::Zero(), spread.cwiseInverse()};
+             Eigen::Matrix<double, 4, 3>::Zero(),
+             Eigen::Matrix<double, 4, 3>::Zero(),
+             spread.cwiseInverse()};
   Eigen::Matrix4d A, Ad;
   Eigen::Matrix<double, 4, 3> B, Bd;
   const double w0[3] = {0.0, 0.0, 0.0};
@@ -231,7 +236,8 @@ struct Curvature {
   double condition_number = 0.0;
 };
 
-Curvature curvature(const NonlinearLeastSquaresSolution& fit, Index samples, const Amb1dofPredictionErrorOptions& options) {
+Curvature curvature(const NonlinearLeastSquaresSolution& fit, Index samples,
+                    const Amb1dofPredictionErrorOptions& options) {
   constexpr Index n = kParameters;
   if (!fit.evaluated) throw InsufficientData(kWho + ": the predictor diverges at the solution");
   const Eigen::MatrixXd& J = fit.jacobian;
@@ -279,8 +285,8 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
                                                        const Amb1dofPredictionErrorOptions& options) {
   const Index N = y.rows();
   if (y.cols() != 3 || u.cols() != 2 || r.cols() != 2 || u.rows() != N || r.rows() != N)
-    throw Error(kWho + ": needs y = [x, i1, i2], u and r at [u1, u2] with equal samples, got y " +
-                std::to_string(N) + " x " + std::to_string(y.cols()) + ", u " + std::to_string(u.rows()) + " x " +
+    throw Error(kWho + ": needs y = [x, i1, i2], u and r at [u1, u2] with equal samples, got y " + std::to_string(N) +
+                " x " + std::to_string(y.cols()) + ", u " + std::to_string(u.rows()) + " x " +
                 std::to_string(u.cols()) + ", r " + std::to_string(r.rows()) + " x " + std::to_string(r.cols()));
   if (!(sample_time > 0.0) || !std::isfinite(sample_time)) throw Error(kWho + ": sample time must be finite and > 0");
   if (!y.allFinite() || !u.allFinite() || !r.allFinite())
@@ -357,8 +363,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   for (Index i = 0; i < 3; ++i) fit.offset(i) = record.w_scale(i) * p(9 + i);
   for (Index i = 0; i < 4; ++i) fit.initial_state(i) = record.x_scale(i) * p(12 + i);
   for (Index i = 0; i < 4; ++i)
-    for (Index j = 0; j < 3; ++j)
-      fit.predictor_gain(i, j) = record.K0(i, j) + record.k_scale(i, j) * p(16 + 3 * i + j);
+    for (Index j = 0; j < 3; ++j) fit.predictor_gain(i, j) = record.K0(i, j) + record.k_scale(i, j) * p(16 + 3 * i + j);
   fit.covariance = record.v0.asDiagonal() * cov_p.topLeftCorner<9, 9>() * record.v0.asDiagonal();
   for (Index j = 0; j < 3; ++j)
     fit.residual_rms(j) = rms(output_column(solution.residuals.data(), j, N)) / record.weight(j);

@@ -36,26 +36,26 @@
 namespace ambid::ident {
 
 struct Amb1dofPredictionErrorOptions {
-  int max_iterations = 60;        // Levenberg-Marquardt iterations per pass
-  double max_condition = 1e8;     // of the column-equilibrated Jacobian; beyond it: InsufficientData
-  Eigen::Index score_block = 200; // samples per block of the score covariance
-  Eigen::Index min_blocks = 10;   // fewer blocks in the record: InsufficientData
+  int max_iterations = 60;         // Levenberg-Marquardt iterations per pass
+  double max_condition = 1e8;      // of the column-equilibrated Jacobian; beyond it: InsufficientData
+  Eigen::Index score_block = 200;  // samples per block of the score covariance
+  Eigen::Index min_blocks = 10;    // fewer blocks in the record: InsufficientData
 };
 
 struct Amb1dofPredictionErrorFit {
-  Eigen::Matrix<double, 9, 1> v;             // v1..v9
-  Eigen::Matrix<double, 9, 9> covariance;    // of v
-  Eigen::Vector3d offset;                    // w: constant terms of the x'', i1', i2' rows
-  Eigen::Vector4d initial_state;             // x0 = [x, x', i1, i2] at the first sample
+  Eigen::Matrix<double, 9, 1> v;               // v1..v9
+  Eigen::Matrix<double, 9, 9> covariance;      // of v
+  Eigen::Vector3d offset;                      // w: constant terms of the x'', i1', i2' rows
+  Eigen::Vector4d initial_state;               // x0 = [x, x', i1, i2] at the first sample
   Eigen::Matrix<double, 4, 3> predictor_gain;  // K
-  ContinuousSystem continuous;               // Ac(v), Bc(v), C = [x, i1, i2], D = 0
-  DiscreteSystem discrete;                   // its zero-order hold at the sample time
-  Eigen::Vector3d residual_rms;              // prediction error per output [x, i1, i2], SI units
-  double condition_number = 0.0;             // column-equilibrated Jacobian at the solution
-  int iterations = 0;                        // both passes
-  int start_index = 0;                       // the start that went on
-  bool converged = false;                    // false: the second pass stopped at max_iterations
-  double start_cost = 0.0, final_cost = 0.0; // of the second pass (weighted, 0.5 sum e^2)
+  ContinuousSystem continuous;                 // Ac(v), Bc(v), C = [x, i1, i2], D = 0
+  DiscreteSystem discrete;                     // its zero-order hold at the sample time
+  Eigen::Vector3d residual_rms;                // prediction error per output [x, i1, i2], SI units
+  double condition_number = 0.0;               // column-equilibrated Jacobian at the solution
+  int iterations = 0;                          // both passes
+  int start_index = 0;                         // the start that went on
+  bool converged = false;                      // false: the second pass stopped at max_iterations
+  double start_cost = 0.0, final_cost = 0.0;   // of the second pass (weighted, 0.5 sum e^2)
 };
 
 // y: samples x 3 ([x, i1, i2] deviations), u: samples x 2 ([u1, u2] deviations, the recorded
@@ -64,8 +64,8 @@ struct Amb1dofPredictionErrorFit {
 // starting v1..v9 (e.g. least-squares estimates; every entry non-zero). Throws Error for
 // inconsistent sizes or no start, InsufficientData when the record is too short for the score
 // covariance, when r is zero, when an output does not vary, when the solver fails from every
-// start (or every start's predictor diverges) or when the Jacobian is rank deficient or ill-conditioned (the data do not
-// determine v).
+// start (or every start's predictor diverges) or when the Jacobian is rank deficient or ill-conditioned (the data do
+// not determine v).
 Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u,
                                                        const Eigen::MatrixXd& r, double sample_time,
                                                        const std::vector<Eigen::Matrix<double, 9, 1>>& v_starts,

@@ -18,7 +18,8 @@ std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "
 Eigen::MatrixXd checked_inverse(const Eigen::MatrixXd& m, const std::string& what, double* condition = nullptr) {
   const std::optional<Eigen::MatrixXd> regular = linalg::regular_inverse(m);
   if (!regular)
-    throw Error(what + " is singular (rank " + std::to_string(linalg::rank(m)) + " of " + std::to_string(m.rows()) + ")");
+    throw Error(what + " is singular (rank " + std::to_string(linalg::rank(m)) + " of " + std::to_string(m.rows()) +
+                ")");
   const Eigen::MatrixXd& inv = *regular;
   const double cond = m.lpNorm<1>() * inv.lpNorm<1>();  // entrywise 1-norms: a cheap upper-bound estimate
   if (condition) *condition = cond;
@@ -73,7 +74,8 @@ DiscreteSystem to_measured_coordinates(const DiscreteSystem& sys, const Eigen::M
   const Eigen::Index n = sys.states();
   if (true_C.rows() != n || true_C.cols() != n || sys.outputs() != n)
     throw Error("measured coordinates need a square true output matrix of the state dimension " + std::to_string(n) +
-                " and as many outputs, got true C " + dims(true_C) + " and " + std::to_string(sys.outputs()) + " outputs");
+                " and as many outputs, got true C " + dims(true_C) + " and " + std::to_string(sys.outputs()) +
+                " outputs");
   // x_phys = T z with T = true_C^-1 Chat.
   const Eigen::MatrixXd T = checked_inverse(true_C, "measured coordinates: the true C") * sys.C;
   const Eigen::MatrixXd Tinv = checked_inverse(T, "measured coordinates: the transformation true_C^-1 Chat");

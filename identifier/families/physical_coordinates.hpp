@@ -19,12 +19,12 @@
 namespace ambid::ident {
 
 struct SecondOrderForm {
-  ContinuousSystem system;          // P^-1 Ac P, P^-1 Bc, C1^-1 C P = [I 0], C1^-1 D
-  Eigen::MatrixXd transformation;   // P: realisation state = P * physical state
-  Eigen::MatrixXd stiffness;        // A21 = -M^-1 K  (n/2 x n/2)
-  Eigen::MatrixXd damping;          // A22 = -M^-1 D
-  Eigen::MatrixXd input;            // B2 = M^-1 G    (n/2 x inputs)
-  double condition_number = 0.0;    // of [C; C Ac] (after calibration, 1-norm estimate)
+  ContinuousSystem system;         // P^-1 Ac P, P^-1 Bc, C1^-1 C P = [I 0], C1^-1 D
+  Eigen::MatrixXd transformation;  // P: realisation state = P * physical state
+  Eigen::MatrixXd stiffness;       // A21 = -M^-1 K  (n/2 x n/2)
+  Eigen::MatrixXd damping;         // A22 = -M^-1 D
+  Eigen::MatrixXd input;           // B2 = M^-1 G    (n/2 x inputs)
+  double condition_number = 0.0;   // of [C; C Ac] (after calibration, 1-norm estimate)
 };
 
 // `output_calibration` C1 (p x p, invertible) maps the positions to the outputs, y = C1 q;

@@ -31,7 +31,8 @@ Eigen::MatrixXcd resolvent_response(const Eigen::MatrixXd& A, const Eigen::Matri
 }
 
 void require_omega(double omega) {
-  if (!std::isfinite(omega)) throw Error("frequency response: angular frequency must be finite, got " + std::to_string(omega));
+  if (!std::isfinite(omega))
+    throw Error("frequency response: angular frequency must be finite, got " + std::to_string(omega));
 }
 
 std::string omega_text(double omega) {
@@ -70,9 +71,8 @@ Eigen::MatrixXcd freq_response(const StateSpaceController& controller, double om
   const Eigen::Index n = controller.A.rows();
   const auto ni = static_cast<Eigen::Index>(controller.inputs.size());
   const auto no = static_cast<Eigen::Index>(controller.outputs.size());
-  if (controller.A.cols() != n || controller.B.rows() != n || controller.B.cols() != ni ||
-      controller.C.rows() != no || controller.C.cols() != n || controller.D.rows() != no ||
-      controller.D.cols() != ni)
+  if (controller.A.cols() != n || controller.B.rows() != n || controller.B.cols() != ni || controller.C.rows() != no ||
+      controller.C.cols() != n || controller.D.rows() != no || controller.D.cols() != ni)
     throw Error("controller frequency response: matrices do not match " + std::to_string(n) + " states, " +
                 std::to_string(ni) + " inputs, " + std::to_string(no) + " outputs");
   return resolvent_response(controller.A, controller.B, controller.C, controller.D,

@@ -9,8 +9,8 @@
 #include "core/error.hpp"
 #include "identifier/frequency_domain/frf_periodic.hpp"
 #include "identifier/frequency_domain/frf_stepped_sine.hpp"
-#include "identifier/frf_welch.hpp"
 #include "identifier/frequency_domain/rational_fit_order.hpp"
+#include "identifier/frf_welch.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -74,13 +74,15 @@ std::optional<PeriodicFrfOptions> periodic_options(const Experiment& e, const nl
         return std::nullopt;
       }
     } else if (nr > 1) {
-      notes.push_back("excitation: the same multisine on every channel cannot separate the plant inputs; Welch analysis instead");
+      notes.push_back(
+          "excitation: the same multisine on every channel cannot separate the plant inputs; Welch analysis instead");
       return std::nullopt;
     }
   } else if (kind == "prbs") {
     if (nr != 1 || *periods < 2) {
-      notes.push_back(nr != 1 ? "excitation: shifted PRBS channels are not separable period by period; Welch analysis instead"
-                              : "excitation: fewer than two whole PRBS periods; Welch analysis instead");
+      notes.push_back(
+          nr != 1 ? "excitation: shifted PRBS channels are not separable period by period; Welch analysis instead"
+                  : "excitation: fewer than two whole PRBS periods; Welch analysis instead");
       return std::nullopt;
     }
     for (Eigen::Index k = 1; 2 * k < N; ++k)
@@ -105,7 +107,8 @@ std::optional<PeriodicFrfOptions> periodic_options(const Experiment& e, const nl
 // The stepped-sine estimator's options from the description, or nullopt (with a note) when
 // the steps cannot be analysed one by one.
 std::optional<SteppedSineFrfOptions> stepped_sine_options(const Experiment& e, const nlohmann::json& d,
-                                                          const FrfAnalysisOptions& o, std::vector<std::string>& notes) {
+                                                          const FrfAnalysisOptions& o,
+                                                          std::vector<std::string>& notes) {
   if (text(d, "kind") != "stepped_sine") return std::nullopt;
   if (e.r_names.size() != 1 || e.u_names.size() != 1) {
     notes.push_back("excitation: a stepped sine excites one direction per frequency and cannot separate " +
@@ -116,7 +119,8 @@ std::optional<SteppedSineFrfOptions> stepped_sine_options(const Experiment& e, c
   const auto steps = d.find("steps");
   const double cycles = number(d, "measure_periods", 0.0);
   if (steps == d.end() || !steps->is_array() || !(cycles >= 1.0) || cycles != std::floor(cycles)) {
-    notes.push_back("excitation: the stepped-sine description has no usable steps or measure_periods; Welch analysis instead");
+    notes.push_back(
+        "excitation: the stepped-sine description has no usable steps or measure_periods; Welch analysis instead");
     return std::nullopt;
   }
   SteppedSineFrfOptions s;
@@ -127,16 +131,19 @@ std::optional<SteppedSineFrfOptions> stepped_sine_options(const Experiment& e, c
     const double start = step.is_object() ? number(step, "measure_start_sample", -1.0) : -1.0;
     const double length = step.is_object() ? number(step, "measure_samples", 0.0) : 0.0;
     if (!(start >= 0.0) || !(length >= 2.0)) {
-      notes.push_back("excitation: a stepped-sine step without measure_start_sample / measure_samples; Welch analysis instead");
+      notes.push_back(
+          "excitation: a stepped-sine step without measure_start_sample / measure_samples; Welch analysis instead");
       return std::nullopt;
     }
-    s.steps.push_back({static_cast<Eigen::Index>(start), static_cast<Eigen::Index>(length), static_cast<Eigen::Index>(cycles)});
+    s.steps.push_back(
+        {static_cast<Eigen::Index>(start), static_cast<Eigen::Index>(length), static_cast<Eigen::Index>(cycles)});
   }
   return s;
 }
 
 void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double confidence) {
-  const double factor = report.plant.has_variance() ? confidence_radius_factor(confidence, report.plant.variance_dof) : 0.0;
+  const double factor =
+      report.plant.has_variance() ? confidence_radius_factor(confidence, report.plant.variance_dof) : 0.0;
   for (Eigen::Index i = 0; i < report.plant.rows(); ++i) {
     for (Eigen::Index j = 0; j < report.plant.cols(); ++j) {
       PlantPair p;
@@ -190,8 +197,10 @@ void fit_pairs(FrfReport& report, const Experiment& e, const FrfAnalysisOptions&
 
 FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
   e.validate();
-  if (!e.has_excitation()) throw InsufficientData("frf: the experiment records no excitation r; the closed-loop FRF needs one");
-  if (!(o.confidence > 0.0 && o.confidence < 1.0)) throw Error("frf: confidence must be in (0, 1), got " + std::to_string(o.confidence));
+  if (!e.has_excitation())
+    throw InsufficientData("frf: the experiment records no excitation r; the closed-loop FRF needs one");
+  if (!(o.confidence > 0.0 && o.confidence < 1.0))
+    throw Error("frf: confidence must be in (0, 1), got " + std::to_string(o.confidence));
   FrfReport report;
   report.output_names = e.y_names;
   report.input_names = e.u_names;

@@ -33,7 +33,8 @@ std::vector<Eigen::MatrixXcd> period_phasors(const Eigen::MatrixXd& x, Eigen::In
       for (Eigen::Index n = 0; n < period; ++n) segment[static_cast<std::size_t>(n)] = x(first + p * period + n, c);
       fft.fwd(spectrum, segment);  // e^{-j 2 pi k n / N}, unscaled
       for (Eigen::Index l = 0; l < nl; ++l)
-        out[static_cast<std::size_t>(p)](l, c) = scale * spectrum[static_cast<std::size_t>(lines[static_cast<std::size_t>(l)])];
+        out[static_cast<std::size_t>(p)](l, c) =
+            scale * spectrum[static_cast<std::size_t>(lines[static_cast<std::size_t>(l)])];
     }
   }
   return out;

@@ -108,7 +108,8 @@ GreyBoxFit fit_grey_box(const Frf& frf, const std::function<ContinuousSystem(con
         const double s = noise ? std::sqrt(frf.variance[static_cast<std::size_t>(l)](i, j)) : rms(i, j);
         if (!(s > 0.0))
           throw InsufficientData("grey-box fit: element (" + std::to_string(i) + ", " + std::to_string(j) + ") has " +
-                                 (noise ? "zero variance" : "no response") + " at " + std::to_string(frf.frequency_hz(l)) + " Hz");
+                                 (noise ? "zero variance" : "no response") + " at " +
+                                 std::to_string(frf.frequency_hz(l)) + " Hz");
         w(i, j) = 1.0 / s;
       }
     res.weight.push_back(w);
@@ -137,7 +138,7 @@ GreyBoxFit fit_grey_box(const Frf& frf, const std::function<ContinuousSystem(con
   const Eigen::MatrixXd& J = solution.jacobian;
   const Eigen::VectorXd& r = solution.residuals;
   out.misfit = r.squaredNorm() / static_cast<double>(m);  // = mean |w e|^2 over elements and lines
-  Eigen::MatrixXd cov = linalg::qr_inverse_gram(J);  // empty when J is rank deficient
+  Eigen::MatrixXd cov = linalg::qr_inverse_gram(J);       // empty when J is rank deficient
   if (cov.size() != 0) {
     if (!noise) cov *= m > p ? r.squaredNorm() / static_cast<double>(m - p) : 0.0;
     out.covariance = res.scale.asDiagonal() * cov * res.scale.asDiagonal();

@@ -19,8 +19,8 @@
 namespace ambid::ident {
 
 struct GreyBoxOptions {
-  double sample_time = 0.0;    // > 0: compare the ZOH equivalent (exact for sampled data)
-  bool use_variance = true;    // noise weights when the FRF has variances
+  double sample_time = 0.0;  // > 0: compare the ZOH equivalent (exact for sampled data)
+  bool use_variance = true;  // noise weights when the FRF has variances
   int max_iterations = 200;
 };
 
@@ -29,7 +29,7 @@ struct GreyBoxFit {
   Eigen::MatrixXd covariance;  // from the Jacobian at the solution (QR); scaled by the residual
                                // variance unless noise weights were used; empty if singular
   Eigen::VectorXd standard_deviation;
-  double misfit = 0.0;         // mean |w e|^2 over lines and elements
+  double misfit = 0.0;  // mean |w e|^2 over lines and elements
   bool converged = false;
   int iterations = 0;
 };

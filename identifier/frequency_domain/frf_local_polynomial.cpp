@@ -26,7 +26,9 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
   const Eigen::Index D1 = o.degree + 1;
   const Eigen::Index unknowns = (nx + P) * D1;
   Eigen::Index R = o.half_width;
-  if (R == 0) R = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::ceil(0.75 * static_cast<double>(unknowns) / static_cast<double>(P))));
+  if (R == 0)
+    R = std::max<Eigen::Index>(
+        1, static_cast<Eigen::Index>(std::ceil(0.75 * static_cast<double>(unknowns) / static_cast<double>(P))));
   const Eigen::Index w = std::min<Eigen::Index>(2 * R + 1, nl);
   if (P * w < unknowns + 1)
     throw InsufficientData("local polynomial FRF: " + std::to_string(nl) + " lines are too few for a window of " +
@@ -50,8 +52,10 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
     Xe[qi].bottomRows(nl) = X[qi];
     Ze[qi].bottomRows(nl) = Z[qi];
   }
-  for (Eigen::Index i = 0; i < mirrored; ++i) ext_lines[static_cast<std::size_t>(i)] = -lines[static_cast<std::size_t>(mirrored - 1 - i)];
-  for (Eigen::Index i = 0; i < nl; ++i) ext_lines[static_cast<std::size_t>(mirrored + i)] = lines[static_cast<std::size_t>(i)];
+  for (Eigen::Index i = 0; i < mirrored; ++i)
+    ext_lines[static_cast<std::size_t>(i)] = -lines[static_cast<std::size_t>(mirrored - 1 - i)];
+  for (Eigen::Index i = 0; i < nl; ++i)
+    ext_lines[static_cast<std::size_t>(mirrored + i)] = lines[static_cast<std::size_t>(i)];
   const Eigen::Index we = std::min<Eigen::Index>(2 * R + 1, ne);
 
   std::vector<Eigen::MatrixXcd> out;
@@ -89,7 +93,8 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
     const linalg::RankedSolution<Eigen::MatrixXcd> ls = linalg::qr_solve(Phi, rhs, 1e-10);
     if (ls.rank < unknowns)
       throw InsufficientData("local polynomial FRF: the local problem around line " + std::to_string(kc) +
-                             " is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(unknowns) + ")");
+                             " is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(unknowns) +
+                             ")");
     const Eigen::MatrixXcd& theta = ls.x;
     Eigen::MatrixXcd G(nz, nx);
     for (Eigen::Index s = 0; s < nx; ++s) G.col(s) = theta.row(s * D1).transpose() / norms(s * D1);

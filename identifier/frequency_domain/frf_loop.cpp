@@ -31,7 +31,9 @@ LoopResponse loop_response(const StateSpaceController& controller, const LoopSig
   Eigen::MatrixXcd P = Eigen::MatrixXcd::Zero(nu, no);
   for (Eigen::Index o = 0; o < no; ++o) {
     const Eigen::Index i = index_of(signals.u, controller.outputs[static_cast<std::size_t>(o)]);
-    if (i < 0) throw Error("loop response: controller output '" + controller.outputs[static_cast<std::size_t>(o)] + "' is not a plant input");
+    if (i < 0)
+      throw Error("loop response: controller output '" + controller.outputs[static_cast<std::size_t>(o)] +
+                  "' is not a plant input");
     P(i, o) = 1.0;
   }
   Eigen::MatrixXcd Ky = Eigen::MatrixXcd::Zero(no, ny), Ku = Eigen::MatrixXcd::Zero(no, nu),

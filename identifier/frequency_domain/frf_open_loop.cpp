@@ -34,7 +34,8 @@ Eigen::MatrixXcd open_loop_from_closed_loop(const Eigen::MatrixXcd& T, const Eig
                 std::to_string(K.rows()) + "x" + std::to_string(K.cols()));
   const Eigen::MatrixXcd X = Eigen::MatrixXcd::Identity(T.cols(), T.cols()) + K * T;
   if (const double ic = inverse_condition(X); !(ic > 1e-12))
-    throw InsufficientData("open loop from closed loop: I + K T is singular (inverse condition " + std::to_string(ic) + ")");
+    throw InsufficientData("open loop from closed loop: I + K T is singular (inverse condition " + std::to_string(ic) +
+                           ")");
   return right_solve(T, X);
 }
 
@@ -48,8 +49,9 @@ Frf open_loop_from_closed_loop(const Frf& Tyr, const StateSpaceController& contr
     const LoopResponse loop = loop_response(controller, signals, omega_of(f));
     const Eigen::MatrixXcd& T_r = Tyr.value[static_cast<std::size_t>(l)];
     if (T_r.rows() != static_cast<Eigen::Index>(signals.y.size()) || T_r.cols() != loop.M.cols())
-      throw Error("open loop from closed loop: T_yr is " + std::to_string(T_r.rows()) + "x" + std::to_string(T_r.cols()) +
-                  ", expected outputs x references " + std::to_string(signals.y.size()) + "x" + std::to_string(loop.M.cols()));
+      throw Error("open loop from closed loop: T_yr is " + std::to_string(T_r.rows()) + "x" +
+                  std::to_string(T_r.cols()) + ", expected outputs x references " + std::to_string(signals.y.size()) +
+                  "x" + std::to_string(loop.M.cols()));
     const Eigen::MatrixXcd T = disturbance_response(T_r, loop.M, f);
     Eigen::MatrixXcd G;
     try {
@@ -63,7 +65,8 @@ Frf open_loop_from_closed_loop(const Frf& Tyr, const StateSpaceController& contr
       const Eigen::Index ny = G.rows();
       const Eigen::MatrixXcd A = Eigen::MatrixXcd::Identity(ny, ny) - G * loop.K;
       const Eigen::MatrixXcd X = Eigen::MatrixXcd::Identity(G.cols(), G.cols()) + loop.K * T;
-      const Eigen::MatrixXcd Bm = right_solve(left_solve(loop.M, Eigen::MatrixXcd::Identity(loop.M.rows(), loop.M.rows())), X);
+      const Eigen::MatrixXcd Bm =
+          right_solve(left_solve(loop.M, Eigen::MatrixXcd::Identity(loop.M.rows(), loop.M.rows())), X);
       const Eigen::MatrixXd a2 = A.cwiseAbs2(), b2 = Bm.cwiseAbs2();
       out.variance.push_back(a2 * Tyr.variance[static_cast<std::size_t>(l)] * b2);
     }
@@ -99,7 +102,8 @@ ControllerCheck check_controller(const Frf& plant, const Frf& Tyr, const StateSp
     const Eigen::MatrixXcd T = disturbance_response(Tyr.value[static_cast<std::size_t>(l)], loop.M, f);
     if (T.rows() != G.rows() || T.cols() != G.cols())
       throw Error("controller check: the plant is " + std::to_string(G.rows()) + "x" + std::to_string(G.cols()) +
-                  " but the closed loop from the plant inputs is " + std::to_string(T.rows()) + "x" + std::to_string(T.cols()));
+                  " but the closed loop from the plant inputs is " + std::to_string(T.rows()) + "x" +
+                  std::to_string(T.cols()));
     const Eigen::Index nu = G.cols();
     const Eigen::MatrixXcd I = Eigen::MatrixXcd::Identity(nu, nu);
     const Eigen::MatrixXcd GpT = left_solve(G, T);  // (I - K G)^-1

@@ -41,7 +41,7 @@ struct ControllerCheck {
   std::vector<Eigen::MatrixXcd> measured;  // K from G and T (square plants; else empty)
   std::vector<Eigen::MatrixXcd> known;     // K of the recorded controller
   std::vector<Eigen::MatrixXcd> loop_gain_measured, loop_gain_known;
-  Eigen::VectorXd relative_error;          // sigma_max(L_meas - L_known) / sigma_max(L_known)
+  Eigen::VectorXd relative_error;  // sigma_max(L_meas - L_known) / sigma_max(L_known)
 };
 ControllerCheck check_controller(const Frf& plant, const Frf& output_from_reference,
                                  const StateSpaceController& controller, const LoopSignalNames& signals);

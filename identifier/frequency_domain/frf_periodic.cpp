@@ -34,8 +34,8 @@ std::string line_text(Eigen::Index k, double f) {
 void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                    const PeriodicFrfOptions& o) {
   if (u.rows() != r.rows() || y.rows() != r.rows())
-    throw Error("periodic FRF: r, u, y must have the same number of samples, got " + std::to_string(r.rows()) +
-                ", " + std::to_string(u.rows()) + ", " + std::to_string(y.rows()));
+    throw Error("periodic FRF: r, u, y must have the same number of samples, got " + std::to_string(r.rows()) + ", " +
+                std::to_string(u.rows()) + ", " + std::to_string(y.rows()));
   if (r.cols() < 1 || u.cols() < 1 || y.cols() < 1)
     throw Error("periodic FRF: need at least one reference, input and output");
   if (!r.allFinite() || !u.allFinite() || !y.allFinite()) throw Error("periodic FRF: the data are not finite");
@@ -47,8 +47,8 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
   for (std::size_t i = 0; i < o.lines.size(); ++i) {
     const Eigen::Index k = o.lines[i];
     if (k <= 0 || 2 * k >= o.period_samples)
-      throw Error("periodic FRF: line " + std::to_string(k) + " is outside (0, N/2) for N = " +
-                  std::to_string(o.period_samples));
+      throw Error("periodic FRF: line " + std::to_string(k) +
+                  " is outside (0, N/2) for N = " + std::to_string(o.period_samples));
     if (i > 0 && k <= o.lines[i - 1])
       throw Error("periodic FRF: lines must increase strictly, got " + std::to_string(k) + " after " +
                   std::to_string(o.lines[i - 1]));
@@ -57,8 +57,8 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
   if (o.transient_periods < 0)
     throw Error("periodic FRF: transient_periods must be >= 0, got " + std::to_string(o.transient_periods));
   if (o.periods_per_block < r.cols())
-    throw Error("periodic FRF: " + std::to_string(r.cols()) + " references need at least as many periods per block, got " +
-                std::to_string(o.periods_per_block));
+    throw Error("periodic FRF: " + std::to_string(r.cols()) +
+                " references need at least as many periods per block, got " + std::to_string(o.periods_per_block));
   if (r.cols() < u.cols())
     throw Error("periodic FRF: the plant estimate needs at least as many references as plant inputs, got " +
                 std::to_string(r.cols()) + " references for " + std::to_string(u.cols()) + " inputs");
@@ -75,8 +75,8 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
   const Eigen::Index B = usable > 0 ? usable / P : 0;
   if (B < 1)
     throw InsufficientData("periodic FRF: " + std::to_string(available) + " whole periods of " + std::to_string(N) +
-                           " samples, " + std::to_string(o.transient_periods) + " discarded as transient, leave no block of " +
-                           std::to_string(P) + " periods");
+                           " samples, " + std::to_string(o.transient_periods) +
+                           " discarded as transient, leave no block of " + std::to_string(P) + " periods");
   const Eigen::Index start = o.first_sample + o.transient_periods * N;
   const auto Rp = period_phasors(r, start, N, B * P, o.lines);
   const auto Up = period_phasors(u, start, N, B * P, o.lines);
@@ -125,14 +125,15 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
 
   // Per-block responses Tyr[b][l], Tur[b][l] and direct estimates Gd[b][l].
   using Lines = std::vector<Eigen::MatrixXcd>;
-  std::vector<Lines> Tyr(static_cast<std::size_t>(B)), Tur(static_cast<std::size_t>(B)), Gd(static_cast<std::size_t>(B));
+  std::vector<Lines> Tyr(static_cast<std::size_t>(B)), Tur(static_cast<std::size_t>(B)),
+      Gd(static_cast<std::size_t>(B));
   const bool lpm = o.transient_model == PeriodicFrfOptions::TransientModel::local_polynomial ||
                    (o.transient_model == PeriodicFrfOptions::TransientModel::automatic && P > 1);
   for (Eigen::Index b = 0; b < B; ++b) {
     const auto bi = static_cast<std::size_t>(b);
     if (lpm) {
-      std::vector<Eigen::MatrixXcd> X(static_cast<std::size_t>(P)), Z(static_cast<std::size_t>(P)), U(static_cast<std::size_t>(P)),
-          Y(static_cast<std::size_t>(P));
+      std::vector<Eigen::MatrixXcd> X(static_cast<std::size_t>(P)), Z(static_cast<std::size_t>(P)),
+          U(static_cast<std::size_t>(P)), Y(static_cast<std::size_t>(P));
       for (Eigen::Index q = 0; q < P; ++q) {
         const auto pi = static_cast<std::size_t>(b * P + q), qi = static_cast<std::size_t>(q);
         X[qi] = Rp[pi];

@@ -36,11 +36,11 @@ namespace ambid::ident {
 
 struct PeriodicFrfOptions {
   double sample_time = 0.0;
-  Eigen::Index period_samples = 0;       // N
-  std::vector<Eigen::Index> lines;       // excited DFT lines within one period, 0 < k < N/2
-  Eigen::Index first_sample = 0;         // where the first period starts
-  Eigen::Index transient_periods = 1;    // whole periods discarded after first_sample
-  Eigen::Index periods_per_block = 1;    // P (the Hadamard order for the orthogonal pattern)
+  Eigen::Index period_samples = 0;     // N
+  std::vector<Eigen::Index> lines;     // excited DFT lines within one period, 0 < k < N/2
+  Eigen::Index first_sample = 0;       // where the first period starts
+  Eigen::Index transient_periods = 1;  // whole periods discarded after first_sample
+  Eigen::Index periods_per_block = 1;  // P (the Hadamard order for the orthogonal pattern)
   enum class TransientModel { automatic, none, local_polynomial };
   TransientModel transient_model = TransientModel::automatic;  // automatic: local polynomial when P > 1
   LocalPolynomialOptions local_polynomial;

@@ -37,14 +37,16 @@ std::string step_name(std::size_t i, double f) {
 
 void check_inputs(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                   const SteppedSineFrfOptions& o) {
-  if (!(o.sample_time > 0.0)) throw Error("stepped sine: sample_time must be positive, got " + std::to_string(o.sample_time));
+  if (!(o.sample_time > 0.0))
+    throw Error("stepped sine: sample_time must be positive, got " + std::to_string(o.sample_time));
   if (r.rows() != u.rows() || r.rows() != y.rows())
     throw Error("stepped sine: r, u and y must have the same number of samples (" + std::to_string(r.rows()) + ", " +
                 std::to_string(u.rows()) + ", " + std::to_string(y.rows()) + ")");
   if (r.cols() != 1 || u.cols() != 1)
-    throw InsufficientData("stepped sine: one sine per step excites one direction; it needs exactly one reference and "
-                           "one plant input, got " + std::to_string(r.cols()) + " references and " +
-                           std::to_string(u.cols()) + " plant inputs");
+    throw InsufficientData(
+        "stepped sine: one sine per step excites one direction; it needs exactly one reference and "
+        "one plant input, got " +
+        std::to_string(r.cols()) + " references and " + std::to_string(u.cols()) + " plant inputs");
   if (o.steps.empty()) throw InsufficientData("stepped sine: no steps");
 }
 
@@ -59,12 +61,15 @@ SteppedSineFrf estimate_stepped_sine_frf(const Eigen::MatrixXd& r, const Eigen::
     const double f = static_cast<double>(s.cycles) / (static_cast<double>(s.measure_samples) * o.sample_time);
     if (s.measure_start < 0 || s.measure_samples < 2 || s.measure_start + s.measure_samples > r.rows())
       throw Error(step_name(i, f) + ": window [" + std::to_string(s.measure_start) + ", +" +
-                  std::to_string(s.measure_samples) + ") is outside the record of " + std::to_string(r.rows()) + " samples");
+                  std::to_string(s.measure_samples) + ") is outside the record of " + std::to_string(r.rows()) +
+                  " samples");
     if (s.cycles < 1 || 2 * s.cycles >= s.measure_samples)
-      throw Error(step_name(i, f) + ": " + std::to_string(s.cycles) + " cycles in " + std::to_string(s.measure_samples) +
-                  " samples is not below the Nyquist frequency");
+      throw Error(step_name(i, f) + ": " + std::to_string(s.cycles) + " cycles in " +
+                  std::to_string(s.measure_samples) + " samples is not below the Nyquist frequency");
     if (f < o.f_min || (o.f_max > 0.0 && f > o.f_max)) continue;
-    const auto one = [&](const Eigen::MatrixXd& x) { return window_phasor(x, s.measure_start, s.measure_samples, s.cycles); };
+    const auto one = [&](const Eigen::MatrixXd& x) {
+      return window_phasor(x, s.measure_start, s.measure_samples, s.cycles);
+    };
     const Eigen::VectorXcd R = one(r), U = one(u), Y = one(y);
     // The reference must be there at all: a step whose r phasor is at rounding level of the
     // recorded r cannot be divided by.
@@ -75,7 +80,8 @@ SteppedSineFrf estimate_stepped_sine_frf(const Eigen::MatrixXd& r, const Eigen::
     phasors.push_back({f, R(0), U(0), Y});
   }
   if (phasors.empty()) throw InsufficientData("stepped sine: no step in the requested band");
-  std::sort(phasors.begin(), phasors.end(), [](const StepPhasors& a, const StepPhasors& b) { return a.frequency_hz < b.frequency_hz; });
+  std::sort(phasors.begin(), phasors.end(),
+            [](const StepPhasors& a, const StepPhasors& b) { return a.frequency_hz < b.frequency_hz; });
   for (std::size_t i = 1; i < phasors.size(); ++i)
     if (!(phasors[i].frequency_hz > phasors[i - 1].frequency_hz))
       throw Error("stepped sine: two steps at " + std::to_string(phasors[i].frequency_hz) + " Hz");

@@ -41,13 +41,14 @@ void Frf::validate() const {
     if (!(f > 0.0) || !std::isfinite(f))
       throw Error("frf: frequency " + std::to_string(k) + " must be positive and finite, got " + std::to_string(f));
     if (k > 0 && !(f > frequency_hz(static_cast<Eigen::Index>(k) - 1)))
-      throw Error("frf: frequencies must increase strictly, line " + std::to_string(k) + " has " +
-                  std::to_string(f) + " Hz after " + std::to_string(frequency_hz(static_cast<Eigen::Index>(k) - 1)));
+      throw Error("frf: frequencies must increase strictly, line " + std::to_string(k) + " has " + std::to_string(f) +
+                  " Hz after " + std::to_string(frequency_hz(static_cast<Eigen::Index>(k) - 1)));
     if (value[k].rows() != rows() || value[k].cols() != cols())
       throw Error("frf: line " + std::to_string(k) + " is " + std::to_string(value[k].rows()) + "x" +
                   std::to_string(value[k].cols()) + ", the first line " + std::to_string(rows()) + "x" +
                   std::to_string(cols()));
-    if (!value[k].allFinite()) throw Error("frf: line " + std::to_string(k) + " (" + std::to_string(f) + " Hz) is not finite");
+    if (!value[k].allFinite())
+      throw Error("frf: line " + std::to_string(k) + " (" + std::to_string(f) + " Hz) is not finite");
     if (!variance.empty()) {
       if (variance[k].rows() != rows() || variance[k].cols() != cols())
         throw Error("frf: variance of line " + std::to_string(k) + " has the wrong shape");

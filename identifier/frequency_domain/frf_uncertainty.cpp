@@ -30,7 +30,8 @@ UncertaintyEnvelope uncertainty_envelope(const std::vector<Frf>& cases, const Fr
   for (Eigen::Index l = 0; l < nl; ++l) {
     const Eigen::MatrixXcd& GN = nominal.value[static_cast<std::size_t>(l)];
     if (!(max_singular_value(GN) > 0.0))
-      throw InsufficientData("uncertainty envelope: the nominal is zero at " + std::to_string(nominal.frequency_hz(l)) + " Hz");
+      throw InsufficientData("uncertainty envelope: the nominal is zero at " + std::to_string(nominal.frequency_hz(l)) +
+                             " Hz");
     for (Eigen::Index c = 0; c < nc; ++c) {
       const Eigen::MatrixXcd D = cases[static_cast<std::size_t>(c)].value[static_cast<std::size_t>(l)] - GN;
       out.additive(l, c) = max_singular_value(D);

@@ -17,9 +17,9 @@ namespace ambid::ident {
 
 struct UncertaintyEnvelope {
   Eigen::VectorXd frequency_hz;
-  Eigen::MatrixXd additive;        // lines x cases
-  Eigen::MatrixXd multiplicative;  // lines x cases
-  Eigen::VectorXd additive_envelope;        // max over cases
+  Eigen::MatrixXd additive;           // lines x cases
+  Eigen::MatrixXd multiplicative;     // lines x cases
+  Eigen::VectorXd additive_envelope;  // max over cases
   Eigen::VectorXd multiplicative_envelope;
 };
 

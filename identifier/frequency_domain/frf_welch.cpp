@@ -1,7 +1,7 @@
 #include "identifier/frf_welch.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <limits>
 #include <numbers>
@@ -21,15 +21,18 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
   if (u.rows() != r.rows() || y.rows() != r.rows())
     throw Error("Welch FRF: r, u, y must have the same number of samples, got " + std::to_string(r.rows()) + ", " +
                 std::to_string(u.rows()) + ", " + std::to_string(y.rows()));
-  if (r.cols() < 1 || u.cols() < 1 || y.cols() < 1) throw Error("Welch FRF: need at least one reference, input and output");
+  if (r.cols() < 1 || u.cols() < 1 || y.cols() < 1)
+    throw Error("Welch FRF: need at least one reference, input and output");
   if (r.cols() < u.cols())
     throw Error("Welch FRF: the plant estimate needs at least as many references as plant inputs, got " +
                 std::to_string(r.cols()) + " references for " + std::to_string(u.cols()) + " inputs");
   if (!r.allFinite() || !u.allFinite() || !y.allFinite()) throw Error("Welch FRF: the data are not finite");
   if (!(o.sample_time > 0.0) || !std::isfinite(o.sample_time))
     throw Error("Welch FRF: sample_time must be positive, got " + std::to_string(o.sample_time));
-  if (o.segment_samples < 8) throw Error("Welch FRF: segment_samples must be at least 8, got " + std::to_string(o.segment_samples));
-  if (!(o.overlap >= 0.0 && o.overlap < 1.0)) throw Error("Welch FRF: overlap must be in [0, 1), got " + std::to_string(o.overlap));
+  if (o.segment_samples < 8)
+    throw Error("Welch FRF: segment_samples must be at least 8, got " + std::to_string(o.segment_samples));
+  if (!(o.overlap >= 0.0 && o.overlap < 1.0))
+    throw Error("Welch FRF: overlap must be in [0, 1), got " + std::to_string(o.overlap));
   if (o.first_sample < 0) throw Error("Welch FRF: first_sample must be >= 0, got " + std::to_string(o.first_sample));
   if (!(o.f_min >= 0.0) || !(o.f_max >= 0.0)) throw Error("Welch FRF: f_min and f_max must be >= 0");
 }
@@ -40,7 +43,8 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
                             const WelchFrfOptions& o) {
   check_options(r, u, y, o);
   const Eigen::Index L = o.segment_samples;
-  const Eigen::Index hop = std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::llround(static_cast<double>(L) * (1.0 - o.overlap))));
+  const Eigen::Index hop =
+      std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::llround(static_cast<double>(L) * (1.0 - o.overlap))));
   const Eigen::Index available = r.rows() - o.first_sample;
   const Eigen::Index M = available >= L ? 1 + (available - L) / hop : 0;
   const Eigen::Index nr = r.cols(), nu = u.cols(), ny = y.cols(), nz = nr + nu + ny;
@@ -83,9 +87,11 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
     for (Eigen::Index c = 0; c < nz; ++c) {
       for (Eigen::Index n = 0; n < L; ++n) segment[static_cast<std::size_t>(n)] = w(n) * Z(start + n, c);
       fft.fwd(spectrum, segment);
-      for (Eigen::Index b = 0; b < nb; ++b) F(b, c) = spectrum[static_cast<std::size_t>(bins[static_cast<std::size_t>(b)])];
+      for (Eigen::Index b = 0; b < nb; ++b)
+        F(b, c) = spectrum[static_cast<std::size_t>(bins[static_cast<std::size_t>(b)])];
     }
-    for (Eigen::Index b = 0; b < nb; ++b) S[static_cast<std::size_t>(b)] += F.row(b).transpose() * F.row(b).conjugate();  // Z Z^H
+    for (Eigen::Index b = 0; b < nb; ++b)
+      S[static_cast<std::size_t>(b)] += F.row(b).transpose() * F.row(b).conjugate();  // Z Z^H
   }
 
   WelchFrf out;
@@ -109,13 +115,16 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
     const Eigen::MatrixXcd Suu = Sb.block(nr, nr, nu, nu);
     const Eigen::MatrixXcd Syu = Sb.block(nr + nu, nr, ny, nu);
     const Eigen::MatrixXcd Syy = Sb.block(nr + nu, nr + nu, ny, ny);
-    const std::string where = "line " + std::to_string(bins[static_cast<std::size_t>(b)]) + " (" + std::to_string(f(b)) + " Hz)";
+    const std::string where =
+        "line " + std::to_string(bins[static_cast<std::size_t>(b)]) + " (" + std::to_string(f(b)) + " Hz)";
     if (const double ic = inverse_condition(Srr); !(ic > 1e-10))
       throw InsufficientData("Welch FRF: at " + where + " the references are not independent (inverse condition " +
                              std::to_string(ic) + ")");
     if (const double ic = inverse_condition(Sur); !(ic > 1e-10))
-      throw InsufficientData("Welch FRF: at " + where + " the plant inputs are not excited independently by the references "
-                             "(inverse condition " + std::to_string(ic) + ")");
+      throw InsufficientData("Welch FRF: at " + where +
+                             " the plant inputs are not excited independently by the references "
+                             "(inverse condition " +
+                             std::to_string(ic) + ")");
     const Eigen::MatrixXcd Tyr = right_solve(Syr, Srr);
     const Eigen::MatrixXcd Tur = right_solve(Sur, Srr);
     const Eigen::MatrixXcd G = right_solve(Syr, Sur);
@@ -125,15 +134,17 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
     out.plant_direct.value.push_back(right_solve(Syu, Suu));
 
     for (Eigen::Index i = 0; i < ny; ++i)
-      out.output_coherence(b, i) = std::clamp((Tyr.row(i) * Syr.row(i).adjoint())(0, 0).real() / Syy(i, i).real(), 0.0, 1.0);
+      out.output_coherence(b, i) =
+          std::clamp((Tyr.row(i) * Syr.row(i).adjoint())(0, 0).real() / Syy(i, i).real(), 0.0, 1.0);
     for (Eigen::Index i = 0; i < nu; ++i)
-      out.input_coherence(b, i) = std::clamp((Tur.row(i) * Sur.row(i).adjoint())(0, 0).real() / Suu(i, i).real(), 0.0, 1.0);
+      out.input_coherence(b, i) =
+          std::clamp((Tur.row(i) * Sur.row(i).adjoint())(0, 0).real() / Suu(i, i).real(), 0.0, 1.0);
 
     // v = y - G u: its spectrum, and the reference-side factor of the variance.
     const Eigen::MatrixXcd Suy = Syu.adjoint();
     const Eigen::MatrixXcd Svv = Syy - G * Suy - Syu * G.adjoint() + G * Suu * G.adjoint();
     const Eigen::MatrixXcd Rinv = left_solve(Sur, Eigen::MatrixXcd::Identity(nu, nu));  // nr x nu, Sur Rinv = I
-    const Eigen::MatrixXcd W = Rinv.adjoint() * Srr * Rinv;                          // nu x nu
+    const Eigen::MatrixXcd W = Rinv.adjoint() * Srr * Rinv;                             // nu x nu
     Eigen::MatrixXd var(ny, nu);
     for (Eigen::Index i = 0; i < ny; ++i)
       for (Eigen::Index j = 0; j < nu; ++j)

@@ -21,10 +21,14 @@ IsoZone iso14839_zone(double peak_db, const IsoZoneLimits& limits) {
 
 std::string to_string(IsoZone zone) {
   switch (zone) {
-    case IsoZone::A: return "A";
-    case IsoZone::B: return "B";
-    case IsoZone::C: return "C";
-    case IsoZone::D: return "D";
+    case IsoZone::A:
+      return "A";
+    case IsoZone::B:
+      return "B";
+    case IsoZone::C:
+      return "C";
+    case IsoZone::D:
+      return "D";
   }
   return "?";
 }

@@ -63,7 +63,8 @@ RationalFit fit_rational(const Eigen::VectorXd& frequency_hz, const Eigen::Vecto
   Eigen::MatrixXd cov = linalg::qr_inverse_gram(J, 1e-14);  // empty when J is rank deficient
   if (cov.size() != 0 && data.weighting != FitWeighting::noise) {
     const double dof = static_cast<double>(2 * out.lines - out.parameters);
-    const double s2 = dof > 0.0 ? 2.0 * out.misfit * static_cast<double>(out.lines) / dof : std::numeric_limits<double>::quiet_NaN();
+    const double s2 =
+        dof > 0.0 ? 2.0 * out.misfit * static_cast<double>(out.lines) / dof : std::numeric_limits<double>::quiet_NaN();
     cov *= s2;
   }
   out.parameter_covariance = cov;

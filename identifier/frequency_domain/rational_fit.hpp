@@ -28,9 +28,9 @@
 namespace ambid::ident {
 
 struct RationalModel {
-  Eigen::VectorXd numerator;    // b_0..b_m (coefficients of powers of s / w0)
-  Eigen::VectorXd denominator;  // a_0..a_n with a_n = 1
-  double frequency_scale = 1.0; // w0, rad/s
+  Eigen::VectorXd numerator;     // b_0..b_m (coefficients of powers of s / w0)
+  Eigen::VectorXd denominator;   // a_0..a_n with a_n = 1
+  double frequency_scale = 1.0;  // w0, rad/s
 
   int numerator_degree() const { return static_cast<int>(numerator.size()) - 1; }
   int denominator_degree() const { return static_cast<int>(denominator.size()) - 1; }
@@ -49,25 +49,25 @@ struct RationalModel {
 enum class FitWeighting { automatic, noise, relative, uniform };  // automatic: noise if variances given
 
 struct RationalFitOptions {
-  int numerator_degree = 0;     // m >= 0
-  int denominator_degree = 2;   // n >= 1, m <= n
+  int numerator_degree = 0;    // m >= 0
+  int denominator_degree = 2;  // n >= 1, m <= n
   FitWeighting weighting = FitWeighting::automatic;
   double delay = 0.0;            // s, a known pure delay contained in the data
   double zoh_sample_time = 0.0;  // > 0: the data are a zero-order-hold sampled response
   int sk_iterations = 40;
-  double sk_tolerance = 1e-12;   // relative change of the denominator that ends SK
-  bool refine = true;            // Ceres output-error refinement
+  double sk_tolerance = 1e-12;  // relative change of the denominator that ends SK
+  bool refine = true;           // Ceres output-error refinement
   int refine_iterations = 200;
 };
 
 struct RationalFit {
   RationalModel model;
   FitWeighting weighting = FitWeighting::uniform;  // as resolved
-  double misfit = 0.0;        // mean over lines of |w_k (G_model - G_k)|^2 (compensated data)
+  double misfit = 0.0;                             // mean over lines of |w_k (G_model - G_k)|^2 (compensated data)
   Eigen::Index lines = 0;
-  int parameters = 0;         // m + 1 + n
+  int parameters = 0;  // m + 1 + n
   int sk_iterations = 0;
-  bool refined = false;       // Ceres ran and did not make the fit worse
+  bool refined = false;  // Ceres ran and did not make the fit worse
   // Parameter covariance (b_0..b_m, a_0..a_{n-1}, scaled coefficients) from the Jacobian at
   // the solution (QR, no normal equations): absolute with noise weights, else scaled by the
   // residual variance. pole_std: sqrt(E|dp|^2) of each pole of model.poles() (rad/s),

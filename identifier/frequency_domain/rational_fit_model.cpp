@@ -56,7 +56,8 @@ double RationalModel::gain() const {
 ContinuousSystem RationalModel::realization() const {
   check(*this);
   const int m = numerator_degree(), n = denominator_degree();
-  if (m > n) throw Error("rational model: improper (numerator degree " + std::to_string(m) + " > " + std::to_string(n) + ")");
+  if (m > n)
+    throw Error("rational model: improper (numerator degree " + std::to_string(m) + " > " + std::to_string(n) + ")");
   const auto N = static_cast<Eigen::Index>(n);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(N + 1);
   b.head(numerator.size()) = numerator;
@@ -76,10 +77,14 @@ ContinuousSystem RationalModel::realization() const {
 
 std::string to_string(FitWeighting weighting) {
   switch (weighting) {
-    case FitWeighting::automatic: return "automatic";
-    case FitWeighting::noise: return "noise";
-    case FitWeighting::relative: return "relative";
-    case FitWeighting::uniform: return "uniform";
+    case FitWeighting::automatic:
+      return "automatic";
+    case FitWeighting::noise:
+      return "noise";
+    case FitWeighting::relative:
+      return "relative";
+    case FitWeighting::uniform:
+      return "uniform";
   }
   return "?";
 }

@@ -64,8 +64,9 @@ OrderSelection select_rational_order(const Eigen::VectorXd& f, const Eigen::Vect
         c.validation_misfit = s / static_cast<double>(val.x.size());
         c.estimation_misfit = fit.misfit;
         const double K = static_cast<double>(fit.lines);
-        c.aic = weighting == FitWeighting::noise ? K * fit.misfit + 2.0 * c.parameters
-                                                 : 2.0 * K * std::log(std::max(fit.misfit, 1e-300)) + 2.0 * c.parameters;
+        c.aic = weighting == FitWeighting::noise
+                    ? K * fit.misfit + 2.0 * c.parameters
+                    : 2.0 * K * std::log(std::max(fit.misfit, 1e-300)) + 2.0 * c.parameters;
         c.ok = std::isfinite(c.validation_misfit);
         if (!c.ok) c.failure = "validation misfit is not finite";
       } catch (const Error& e) {

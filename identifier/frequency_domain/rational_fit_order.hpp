@@ -30,9 +30,9 @@ struct OrderSearchOptions {
 struct OrderCandidate {
   int numerator_degree = 0, denominator_degree = 0, parameters = 0;
   bool ok = false;
-  std::string failure;           // why the fit failed, when !ok
+  std::string failure;  // why the fit failed, when !ok
   double estimation_misfit = 0.0, validation_misfit = 0.0;
-  double aic = 0.0;              // on the estimation lines (informative)
+  double aic = 0.0;  // on the estimation lines (informative)
 };
 
 struct OrderSelection {

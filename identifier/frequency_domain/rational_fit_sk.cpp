@@ -24,31 +24,40 @@ std::complex<double> monic_polyval(const Eigen::VectorXd& a_low, std::complex<do
 FitData prepare_fit_data(const Eigen::VectorXd& f, const Eigen::VectorXcd& G, const Eigen::VectorXd& variance,
                          const RationalFitOptions& o) {
   const Eigen::Index K = f.size();
-  if (G.size() != K) throw Error("rational fit: " + std::to_string(G.size()) + " responses for " + std::to_string(K) + " frequencies");
+  if (G.size() != K)
+    throw Error("rational fit: " + std::to_string(G.size()) + " responses for " + std::to_string(K) + " frequencies");
   if (variance.size() != 0 && variance.size() != K)
-    throw Error("rational fit: " + std::to_string(variance.size()) + " variances for " + std::to_string(K) + " frequencies");
-  if (o.denominator_degree < 1) throw Error("rational fit: denominator degree must be >= 1, got " + std::to_string(o.denominator_degree));
+    throw Error("rational fit: " + std::to_string(variance.size()) + " variances for " + std::to_string(K) +
+                " frequencies");
+  if (o.denominator_degree < 1)
+    throw Error("rational fit: denominator degree must be >= 1, got " + std::to_string(o.denominator_degree));
   if (o.numerator_degree < 0 || o.numerator_degree > o.denominator_degree)
     throw Error("rational fit: numerator degree must be in [0, " + std::to_string(o.denominator_degree) + "], got " +
                 std::to_string(o.numerator_degree));
-  if (!(o.delay >= 0.0) || !std::isfinite(o.delay)) throw Error("rational fit: delay must be >= 0, got " + std::to_string(o.delay));
+  if (!(o.delay >= 0.0) || !std::isfinite(o.delay))
+    throw Error("rational fit: delay must be >= 0, got " + std::to_string(o.delay));
   if (!(o.zoh_sample_time >= 0.0) || !std::isfinite(o.zoh_sample_time))
     throw Error("rational fit: zoh_sample_time must be >= 0, got " + std::to_string(o.zoh_sample_time));
   for (Eigen::Index k = 0; k < K; ++k) {
     if (!(f(k) > 0.0) || !std::isfinite(f(k)) || (k > 0 && !(f(k) > f(k - 1))))
-      throw Error("rational fit: frequencies must be positive and increasing, line " + std::to_string(k) + " has " + std::to_string(f(k)));
+      throw Error("rational fit: frequencies must be positive and increasing, line " + std::to_string(k) + " has " +
+                  std::to_string(f(k)));
     if (!std::isfinite(G(k).real()) || !std::isfinite(G(k).imag()))
       throw Error("rational fit: response at " + std::to_string(f(k)) + " Hz is not finite");
     if (o.zoh_sample_time > 0.0 && !(2.0 * f(k) * o.zoh_sample_time < 1.0))
-      throw Error("rational fit: line " + std::to_string(f(k)) + " Hz is not below the Nyquist frequency of the ZOH sampling");
+      throw Error("rational fit: line " + std::to_string(f(k)) +
+                  " Hz is not below the Nyquist frequency of the ZOH sampling");
   }
   const int p = o.numerator_degree + 1 + o.denominator_degree;
-  if (K < p) throw InsufficientData("rational fit: " + std::to_string(K) + " lines for " + std::to_string(p) + " parameters");
+  if (K < p)
+    throw InsufficientData("rational fit: " + std::to_string(K) + " lines for " + std::to_string(p) + " parameters");
 
   FitData d;
   d.weighting = o.weighting;
-  if (d.weighting == FitWeighting::automatic) d.weighting = variance.size() ? FitWeighting::noise : FitWeighting::relative;
-  if (d.weighting == FitWeighting::noise && variance.size() == 0) throw Error("rational fit: noise weighting needs variances");
+  if (d.weighting == FitWeighting::automatic)
+    d.weighting = variance.size() ? FitWeighting::noise : FitWeighting::relative;
+  if (d.weighting == FitWeighting::noise && variance.size() == 0)
+    throw Error("rational fit: noise weighting needs variances");
   const Eigen::VectorXd omega = 2.0 * std::numbers::pi * f;
   d.w0 = omega.maxCoeff();
   d.x = std::complex<double>(0.0, 1.0) * omega.cast<std::complex<double>>() / d.w0;
@@ -65,14 +74,17 @@ FitData prepare_fit_data(const Eigen::VectorXd& f, const Eigen::VectorXcd& G, co
     switch (d.weighting) {
       case FitWeighting::noise:
         if (!(variance(k) > 0.0) || !std::isfinite(variance(k)))
-          throw Error("rational fit: variance at " + std::to_string(f(k)) + " Hz must be positive, got " + std::to_string(variance(k)));
+          throw Error("rational fit: variance at " + std::to_string(f(k)) + " Hz must be positive, got " +
+                      std::to_string(variance(k)));
         d.w(k) = 1.0 / std::sqrt(variance(k) * std::norm(c));
         break;
       case FitWeighting::relative:
-        if (!(std::abs(d.g(k)) > 0.0)) throw Error("rational fit: relative weighting with a zero response at " + std::to_string(f(k)) + " Hz");
+        if (!(std::abs(d.g(k)) > 0.0))
+          throw Error("rational fit: relative weighting with a zero response at " + std::to_string(f(k)) + " Hz");
         d.w(k) = 1.0 / std::abs(d.g(k));
         break;
-      default: d.w(k) = 1.0;
+      default:
+        d.w(k) = 1.0;
     }
   }
   return d;
@@ -126,8 +138,9 @@ Coefficients sanathanan_koerner(const FitData& d, int m, int n, int iterations, 
     }
     const linalg::RankedSolution<Eigen::VectorXd> ls = linalg::qr_solve(A, rhs, 1e-13);
     if (ls.rank < p)
-      throw InsufficientData("rational fit: the least-squares problem of order (" + std::to_string(m) + ", " + std::to_string(n) +
-                             ") is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(p) + ")");
+      throw InsufficientData("rational fit: the least-squares problem of order (" + std::to_string(m) + ", " +
+                             std::to_string(n) + ") is rank deficient (rank " + std::to_string(ls.rank) + " of " +
+                             std::to_string(p) + ")");
     const Eigen::VectorXd theta = (ls.x.array() / colnorm.array()).matrix();
     const Eigen::VectorXd a_new = theta.tail(na);
     const double change = (a_new - c.a_low).norm() / (1.0 + a_new.norm());

@@ -68,15 +68,16 @@ Frf input_sensitivity(const Frf& plant, const StateSpaceController& controller, 
   return out;
 }
 
-Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& controller, const LoopSignalNames& signals,
-                      const Eigen::VectorXd& frequency_hz) {
+Frf input_sensitivity(const DiscreteSystem& plant, const StateSpaceController& controller,
+                      const LoopSignalNames& signals, const Eigen::VectorXd& frequency_hz) {
   if (std::abs(plant.sample_time - controller.sample_time) > 1e-9 * plant.sample_time)
     throw Error("input sensitivity: plant sample time " + std::to_string(plant.sample_time) +
                 " differs from the controller's " + std::to_string(controller.sample_time));
   return input_sensitivity(freq_response(plant, frequency_hz), controller, signals);
 }
 
-Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController& controller, const LoopSignalNames& signals) {
+Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController& controller,
+                                     const LoopSignalNames& signals) {
   Tur.validate();
   Frf out;
   out.frequency_hz = Tur.frequency_hz;
@@ -87,9 +88,11 @@ Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController&
     const Eigen::MatrixXcd& T = Tur.value[static_cast<std::size_t>(l)];
     if (T.rows() != loop.M.rows() || T.cols() != loop.M.cols())
       throw Error("input sensitivity: T_ur is " + std::to_string(T.rows()) + "x" + std::to_string(T.cols()) +
-                  ", expected inputs x references " + std::to_string(loop.M.rows()) + "x" + std::to_string(loop.M.cols()));
+                  ", expected inputs x references " + std::to_string(loop.M.rows()) + "x" +
+                  std::to_string(loop.M.cols()));
     if (!(inverse_condition(loop.M) > 1e-12))
-      throw InsufficientData("input sensitivity: the references do not reach every plant input at " + std::to_string(f) + " Hz");
+      throw InsufficientData("input sensitivity: the references do not reach every plant input at " +
+                             std::to_string(f) + " Hz");
     if (loop.M.rows() != loop.M.cols() || !loop.M.isIdentity(1e-12)) identity_m = false;
     out.value.push_back(right_solve(T, loop.M));
   }
@@ -103,9 +106,12 @@ Frf input_sensitivity_from_reference(const Frf& Tur, const StateSpaceController&
 std::vector<SensitivityPeak> sensitivity_peaks(const Frf& S, const std::vector<std::string>& loop_names,
                                                const IsoZoneLimits& limits) {
   S.validate();
-  if (S.rows() != S.cols()) throw Error("sensitivity peaks: S must be square, got " + std::to_string(S.rows()) + "x" + std::to_string(S.cols()));
+  if (S.rows() != S.cols())
+    throw Error("sensitivity peaks: S must be square, got " + std::to_string(S.rows()) + "x" +
+                std::to_string(S.cols()));
   if (static_cast<Eigen::Index>(loop_names.size()) != S.rows())
-    throw Error("sensitivity peaks: " + std::to_string(loop_names.size()) + " loop names for " + std::to_string(S.rows()) + " loops");
+    throw Error("sensitivity peaks: " + std::to_string(loop_names.size()) + " loop names for " +
+                std::to_string(S.rows()) + " loops");
   std::vector<SensitivityPeak> out;
   for (Eigen::Index i = 0; i < S.rows(); ++i)
     out.push_back(peak_of(S.frequency_hz, S.element(i, i).cwiseAbs(), loop_names[static_cast<std::size_t>(i)], limits));

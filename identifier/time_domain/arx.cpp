@@ -21,10 +21,8 @@ std::vector<std::string> regressor_names(Eigen::Index p, Eigen::Index m, Eigen::
   if (direct)
     for (Eigen::Index c = 0; c < m; ++c) names.push_back(us + std::to_string(c + 1) + "[k]");
   for (Eigen::Index i = 1; i <= q; ++i) {
-    for (Eigen::Index c = 0; c < p; ++c)
-      names.push_back(ys + std::to_string(c + 1) + "[k-" + std::to_string(i) + "]");
-    for (Eigen::Index c = 0; c < m; ++c)
-      names.push_back(us + std::to_string(c + 1) + "[k-" + std::to_string(i) + "]");
+    for (Eigen::Index c = 0; c < p; ++c) names.push_back(ys + std::to_string(c + 1) + "[k-" + std::to_string(i) + "]");
+    for (Eigen::Index c = 0; c < m; ++c) names.push_back(us + std::to_string(c + 1) + "[k-" + std::to_string(i) + "]");
   }
   return names;
 }
@@ -52,8 +50,8 @@ void check_inputs(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eige
   if (y.cols() < 1) throw Error("ARX: y needs at least one channel, got " + dims(y));
   if (z.cols() < 1) throw Error("ARX: the target needs at least one channel, got " + dims(z));
   if (u.rows() != y.rows() || z.rows() != y.rows())
-    throw Error("ARX: signals must have the same number of samples: target " + dims(z) + ", y " + dims(y) +
-                ", u " + dims(u));
+    throw Error("ARX: signals must have the same number of samples: target " + dims(z) + ", y " + dims(y) + ", u " +
+                dims(u));
   if (options.direct_term && u.cols() == 0) throw Error("ARX: direct_term needs at least one input channel");
   if (!y.allFinite() || !u.allFinite() || !z.allFinite()) throw Error("ARX: non-finite sample in the data");
   const Eigen::Index n = y.rows(), q = options.order;
@@ -116,7 +114,8 @@ ArxModel fit_arx(const Eigen::MatrixXd& z, const Eigen::MatrixXd& y, const Eigen
   Eigen::MatrixXd phi(block, regs), target(block, t);
   std::vector<bool> across_break(std::size_t(n), false);  // the window k-q .. k holds a break
   for (const Eigen::Index b : options.breaks)
-    for (Eigen::Index k = std::max<Eigen::Index>(b, 0); k < std::min(n, b + q); ++k) across_break[std::size_t(k)] = true;
+    for (Eigen::Index k = std::max<Eigen::Index>(b, 0); k < std::min(n, b + q); ++k)
+      across_break[std::size_t(k)] = true;
   for (Eigen::Index k0 = q; k0 < n; k0 += block) {
     const Eigen::Index end = std::min(n, k0 + block);
     Eigen::Index rows = 0;
@@ -154,8 +153,8 @@ ArxModel fit_arx(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, const ArxOp
 
 Eigen::MatrixXd arx_residuals(const ArxModel& model, const Eigen::MatrixXd& z, const Eigen::MatrixXd& y,
                               const Eigen::MatrixXd& u) {
-  if (y.cols() != model.outputs || u.cols() != model.inputs || z.cols() != model.targets ||
-      y.rows() != u.rows() || z.rows() != y.rows())
+  if (y.cols() != model.outputs || u.cols() != model.inputs || z.cols() != model.targets || y.rows() != u.rows() ||
+      z.rows() != y.rows())
     throw Error("ARX residuals: data " + dims(z) + ", " + dims(y) + ", " + dims(u) + " do not fit the model");
   const Eigen::Index q = model.order;
   if (y.rows() <= q) throw InsufficientData("ARX residuals: need more than " + std::to_string(q) + " samples");

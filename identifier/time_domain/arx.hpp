@@ -19,8 +19,8 @@
 namespace ambid::ident {
 
 struct ArxOptions {
-  Eigen::Index order = 0;       // q >= 1
-  bool direct_term = false;     // estimate b_0 (puts u[k] among the regressors)
+  Eigen::Index order = 0;    // q >= 1
+  bool direct_term = false;  // estimate b_0 (puts u[k] among the regressors)
   LeastSquaresOptions least_squares;
   // Signal names used in error messages ("r" makes them read "r2[k-1]").
   std::string output_symbol = "y";
@@ -33,9 +33,9 @@ struct ArxOptions {
 struct ArxModel {
   Eigen::Index order = 0;
   bool direct_term = false;
-  Eigen::Index outputs = 0;     // channels of y (columns of a_i)
-  Eigen::Index inputs = 0;      // channels of u (columns of b_i)
-  Eigen::Index targets = 0;     // channels of z (rows of a_i, b_i)
+  Eigen::Index outputs = 0;        // channels of y (columns of a_i)
+  Eigen::Index inputs = 0;         // channels of u (columns of b_i)
+  Eigen::Index targets = 0;        // channels of z (rows of a_i, b_i)
   std::vector<Eigen::MatrixXd> a;  // a[i-1] = a_i, targets x outputs, i = 1..q
   std::vector<Eigen::MatrixXd> b;  // b[i] = b_i, targets x inputs, i = 0..q (b[0] = 0 unless direct_term)
   LeastSquaresSolution fit;        // theta = [b_0; a_1; b_1; ...]' in the regressor order above

@@ -27,8 +27,8 @@ KnownController known_controller(const StateSpaceController& c, const std::vecto
   const Index ni = static_cast<Index>(c.inputs.size()), no = static_cast<Index>(c.outputs.size());
   if (c.A.cols() != l || c.B.rows() != l || c.B.cols() != ni || c.C.rows() != no || c.C.cols() != l ||
       c.D.rows() != no || c.D.cols() != ni)
-    throw Error("known controller: matrices A " + dims(c.A) + ", B " + dims(c.B) + ", C " + dims(c.C) + ", D " + dims(c.D) +
-                " do not fit " + std::to_string(ni) + " inputs and " + std::to_string(no) + " outputs");
+    throw Error("known controller: matrices A " + dims(c.A) + ", B " + dims(c.B) + ", C " + dims(c.C) + ", D " +
+                dims(c.D) + " do not fit " + std::to_string(ni) + " inputs and " + std::to_string(no) + " outputs");
   KnownController k;
   k.A = c.A;
   k.B = Eigen::MatrixXd::Zero(l, m + p);
@@ -40,7 +40,8 @@ KnownController known_controller(const StateSpaceController& c, const std::vecto
     Index idx = find(u_names, name);
     if (idx < 0) {
       idx = find(y_names, name);
-      if (idx < 0) throw Error("known controller: controller input '" + name + "' is neither a plant input nor a plant output");
+      if (idx < 0)
+        throw Error("known controller: controller input '" + name + "' is neither a plant input nor a plant output");
       idx += m;
     }
     column[static_cast<std::size_t>(j)] = idx;
@@ -66,12 +67,13 @@ ClosedLoopIdResult identify_with_known_controller(const Eigen::MatrixXd& r, cons
   const Index m = r.cols(), p = y.cols(), l = controller.A.rows();
   if (r.rows() != y.rows()) throw Error("known-controller CLID: r is " + dims(r) + " but y is " + dims(y));
   if (m < 1 || p < 1) throw Error("known-controller CLID: needs at least one excitation and one output channel");
-  if (controller.A.cols() != l || controller.B.rows() != l || controller.B.cols() != m + p || controller.C.rows() != m ||
-      controller.C.cols() != l || controller.D.rows() != m || controller.D.cols() != m + p)
+  if (controller.A.cols() != l || controller.B.rows() != l || controller.B.cols() != m + p ||
+      controller.C.rows() != m || controller.C.cols() != l || controller.D.rows() != m || controller.D.cols() != m + p)
     throw Error("known-controller CLID: controller A " + dims(controller.A) + ", B " + dims(controller.B) + ", C " +
-                dims(controller.C) + ", D " + dims(controller.D) + " does not read [u (" + std::to_string(m) + "); y (" +
-                std::to_string(p) + ")] and drive " + std::to_string(m) + " plant inputs");
-  if (options.arx_order < 1) throw Error("known-controller CLID: arx_order must be >= 1, got " + std::to_string(options.arx_order));
+                dims(controller.C) + ", D " + dims(controller.D) + " does not read [u (" + std::to_string(m) +
+                "); y (" + std::to_string(p) + ")] and drive " + std::to_string(m) + " plant inputs");
+  if (options.arx_order < 1)
+    throw Error("known-controller CLID: arx_order must be >= 1, got " + std::to_string(options.arx_order));
   if (options.markov_count < 2)
     throw Error("known-controller CLID: markov_count must be >= 2, got " + std::to_string(options.markov_count));
   if (!(options.sample_time > 0.0)) throw Error("known-controller CLID: sample_time must be positive");
@@ -79,8 +81,7 @@ ClosedLoopIdResult identify_with_known_controller(const Eigen::MatrixXd& r, cons
   ClosedLoopIdResult out;
   const ControllerMarkov cm = controller_markov(controller.A, controller.B, controller.C, controller.D, m,
                                                 options.markov_count);  // refuses feedthrough from u
-  out.controller_spectral_radius =
-      linalg::spectral_radius(controller.A + controller.B.leftCols(m) * controller.C);
+  out.controller_spectral_radius = linalg::spectral_radius(controller.A + controller.B.leftCols(m) * controller.C);
 
   ArxOptions arx_options;
   arx_options.order = options.arx_order;
@@ -101,8 +102,8 @@ ClosedLoopIdResult identify_with_known_controller(const Eigen::MatrixXd& r, cons
   const Index n = out.plant.states();
   Index count = options.kalman_count;
   if (count == 0) count = std::min<Index>(options.markov_count, (2 * n + p - 1) / p + 1);
-  const KalmanGainEstimate k = kalman_gain_from_markov(out.plant.A, out.plant.C, out.open_loop.gain, count,
-                                                       options.least_squares);
+  const KalmanGainEstimate k =
+      kalman_gain_from_markov(out.plant.A, out.plant.C, out.open_loop.gain, count, options.least_squares);
   out.predictor_gain = k.predictor_gain;
   out.filter_gain = k.filter_gain;
   return out;

@@ -42,24 +42,24 @@ KnownController known_controller(const StateSpaceController& controller, const s
                                  const std::vector<std::string>& y_names);
 
 struct KnownControllerIdOptions {
-  Eigen::Index arx_order = 0;     // q (>= 1)
-  Eigen::Index markov_count = 30; // J: open-loop Markov parameters Y_1..Y_J for ERA
-  Eigen::Index kalman_count = 0;  // N_1..N_k for the Kalman gain; 0: smallest k with k p >= 2 n, at most J
-  double sample_time = 0.0;       // of the data (> 0)
-  EraOptions era;                 // order 0: the suggested order
+  Eigen::Index arx_order = 0;      // q (>= 1)
+  Eigen::Index markov_count = 30;  // J: open-loop Markov parameters Y_1..Y_J for ERA
+  Eigen::Index kalman_count = 0;   // N_1..N_k for the Kalman gain; 0: smallest k with k p >= 2 n, at most J
+  double sample_time = 0.0;        // of the data (> 0)
+  EraOptions era;                  // order 0: the suggested order
   LeastSquaresOptions least_squares;
   std::vector<Eigen::Index> breaks;  // joints of records joined end to end (ArxOptions::breaks)
 };
 
 struct ClosedLoopIdResult {
-  DiscreteSystem plant;                 // A, B, C, D = 0 in ERA coordinates
-  Eigen::MatrixXd predictor_gain;       // AK (innovation model x[k+1] = A x + B u + AK e)
-  Eigen::MatrixXd filter_gain;          // K  (4.35); empty when A is singular
+  DiscreteSystem plant;            // A, B, C, D = 0 in ERA coordinates
+  Eigen::MatrixXd predictor_gain;  // AK (innovation model x[k+1] = A x + B u + AK e)
+  Eigen::MatrixXd filter_gain;     // K  (4.35); empty when A is singular
   Eigen::VectorXd hankel_singular_values;
   Eigen::Index suggested_order = 0;
-  ArxModel arx;                         // closed loop, r -> y
-  MarkovParameters closed_loop;         // Yc, Nc (0..J)
-  MarkovParameters open_loop;           // Y, N (0..J)
+  ArxModel arx;                             // closed loop, r -> y
+  MarkovParameters closed_loop;             // Yc, Nc (0..J)
+  MarkovParameters open_loop;               // Y, N (0..J)
   double controller_spectral_radius = 0.0;  // of A + B_u C
 };
 

@@ -67,8 +67,8 @@ Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownContro
   const Index n = plant.states(), p = y.cols(), N = y.rows();
   if (r.rows() != N || p != plant.outputs())
     throw Error("closed-loop validation: y has " + std::to_string(N) + " samples x " + std::to_string(p) +
-                " outputs, r " + std::to_string(r.rows()) + " samples, the model " +
-                std::to_string(plant.outputs()) + " outputs");
+                " outputs, r " + std::to_string(r.rows()) + " samples, the model " + std::to_string(plant.outputs()) +
+                " outputs");
   Eigen::VectorXd spread(p);
   for (Index j = 0; j < p; ++j) {
     spread(j) = (y.col(j).array() - y.col(j).mean()).matrix().norm();

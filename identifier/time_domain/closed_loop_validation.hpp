@@ -17,8 +17,8 @@ namespace ambid::ident {
 
 // The controller's state after each sample: row k is xc[k+1] of xc[k+1] = A xc + B [u; y]
 // from xc[0] = initial (zero when empty). u, y: deviations, samples x channels.
-Eigen::MatrixXd replay_controller(const KnownController& controller, const Eigen::MatrixXd& u,
-                                  const Eigen::MatrixXd& y, const Eigen::VectorXd& initial);
+Eigen::MatrixXd replay_controller(const KnownController& controller, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
+                                  const Eigen::VectorXd& initial);
 
 // Closed-loop outputs of `plant` (D must be 0: no algebraic loop) with `controller` from plant
 // state x0 and controller state xc0, driven by r (samples x plant inputs) and a constant term

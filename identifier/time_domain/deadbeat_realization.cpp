@@ -32,7 +32,8 @@ Eigen::MatrixXd integrator_states(const Eigen::MatrixXd& y, const Eigen::MatrixX
 
 DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, const Eigen::MatrixXd& uf,
                                          const Eigen::MatrixXd& e, const Eigen::MatrixXd& C, const Eigen::MatrixXd& F,
-                                         const Eigen::MatrixXd& Fe, double sample_time, const DeadbeatOptions& options) {
+                                         const Eigen::MatrixXd& Fe, double sample_time,
+                                         const DeadbeatOptions& options) {
   const Eigen::Index N = y.rows(), p = y.cols(), m = u.cols(), n = C.cols(), ni = Fe.cols();
   if (u.rows() != N || uf.rows() != N || uf.cols() != m)
     throw Error("deadbeat realisation: y " + dims(y) + ", u " + dims(u) + " and uf " + dims(uf) +
@@ -45,8 +46,8 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
                 std::to_string(ni));
   if (!(sample_time > 0.0)) throw Error("deadbeat realisation: sample_time must be positive");
   if (options.transient_samples < 0 || options.transient_samples >= N)
-    throw Error("deadbeat realisation: transient_samples " + std::to_string(options.transient_samples) + " out of range for " +
-                std::to_string(N) + " samples");
+    throw Error("deadbeat realisation: transient_samples " + std::to_string(options.transient_samples) +
+                " out of range for " + std::to_string(N) + " samples");
   if (!y.allFinite() || !u.allFinite() || !uf.allFinite() || (ni > 0 && !e.allFinite()))
     throw Error("deadbeat realisation: non-finite sample");
 
@@ -63,8 +64,8 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
     throw Error("deadbeat realisation: the output matrix C (" + dims(C) + ") must have full row rank, rank " +
                 std::to_string(c_rank));
   const Eigen::MatrixXd Cp = linalg::pseudo_inverse(C).pinv;  // n x p
-  const Eigen::MatrixXd Nc = linalg::null_space(C);            // n x (n - p)
-  const Eigen::MatrixXd Fz = -F * Nc;  // m x (n - p)
+  const Eigen::MatrixXd Nc = linalg::null_space(C);           // n x (n - p)
+  const Eigen::MatrixXd Fz = -F * Nc;                         // m x (n - p)
   Eigen::MatrixXd Fzp = Eigen::MatrixXd::Zero(n - p, m);
   if (n > p) {
     linalg::PseudoInverse fz_inverse = linalg::pseudo_inverse(Fz);
@@ -122,7 +123,9 @@ DeadbeatRealization deadbeat_realization(const Eigen::MatrixXd& y, const Eigen::
   // Cov(A(i, j), A(k, l)) = Sigma(i, k) G(j, l) with the regressor index of B entries offset by n.
   const Eigen::Index np = n * (n + m);
   out.parameter_covariance.resize(np, np);
-  auto index = [&](Eigen::Index row, Eigen::Index reg) { return reg < n ? row * n + reg : n * n + row * m + (reg - n); };
+  auto index = [&](Eigen::Index row, Eigen::Index reg) {
+    return reg < n ? row * n + reg : n * n + row * m + (reg - n);
+  };
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n + m; ++j)
       for (Eigen::Index k = 0; k < n; ++k)

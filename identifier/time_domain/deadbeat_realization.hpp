@@ -53,13 +53,13 @@ struct DeadbeatOptions {
 };
 
 struct DeadbeatRealization {
-  DiscreteSystem system;           // A, B, the known C, D = 0: physical coordinates
-  Eigen::MatrixXd deadbeat_gain;   // Gt = -A M_x, n x (outputs + inputs)
-  Eigen::MatrixXd state_map;       // M_x: x = M_x [y; uf - Fe e], n x (outputs + inputs)
-  Eigen::MatrixXd cbar;            // Cbar = [C 0; -F Fe]
-  bool cbar_invertible = false;    // eq. (46) applies as printed
-  Eigen::VectorXd offset;          // c (zero when not estimated)
-  LeastSquaresSolution fit;        // x[k+1]' = [x[k]' u[k]' (1)] theta, theta = [A B (c)]'
+  DiscreteSystem system;          // A, B, the known C, D = 0: physical coordinates
+  Eigen::MatrixXd deadbeat_gain;  // Gt = -A M_x, n x (outputs + inputs)
+  Eigen::MatrixXd state_map;      // M_x: x = M_x [y; uf - Fe e], n x (outputs + inputs)
+  Eigen::MatrixXd cbar;           // Cbar = [C 0; -F Fe]
+  bool cbar_invertible = false;   // eq. (46) applies as printed
+  Eigen::VectorXd offset;         // c (zero when not estimated)
+  LeastSquaresSolution fit;       // x[k+1]' = [x[k]' u[k]' (1)] theta, theta = [A B (c)]'
   // Covariance of p = [A row by row, B row by row] (n n + n m entries).
   Eigen::MatrixXd parameter_covariance;
 };

@@ -56,7 +56,8 @@ Index suggest_order(const Eigen::VectorXd& sv, double zero_tolerance) {
 }
 
 EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions& options) {
-  if (markov.size() < 3) throw Error("ERA: needs Y_0 and at least two more Markov parameters, got " + std::to_string(markov.size()));
+  if (markov.size() < 3)
+    throw Error("ERA: needs Y_0 and at least two more Markov parameters, got " + std::to_string(markov.size()));
   const Index p = markov[0].rows(), m = markov[0].cols();
   if (p < 1 || m < 1) throw Error("ERA: Markov parameters must be at least 1x1");
   for (std::size_t k = 0; k < markov.size(); ++k) {
@@ -76,7 +77,8 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
   Index r = options.block_rows, s = options.block_columns;
   if (r == 0 && s == 0) {
     const Index budget = J - 2 * xi;
-    r = static_cast<Index>(std::floor(static_cast<double>(budget) * static_cast<double>(m) / static_cast<double>(p + m)));
+    r = static_cast<Index>(
+        std::floor(static_cast<double>(budget) * static_cast<double>(m) / static_cast<double>(p + m)));
     r = std::max<Index>(r, 1);
     s = budget - r;
   } else if (r == 0 || s == 0) {
@@ -84,8 +86,9 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
   }
   if (r < 1 || s < 1 || r + s + 2 * xi > J)
     throw Error("ERA: " + std::to_string(r) + " block rows and " + std::to_string(s) + " block columns" +
-                (dc ? " with " + std::to_string(xi) + " correlation blocks" : std::string()) + " need Markov parameters up to Y_" +
-                std::to_string(r + s + 2 * xi) + ", got up to Y_" + std::to_string(J));
+                (dc ? " with " + std::to_string(xi) + " correlation blocks" : std::string()) +
+                " need Markov parameters up to Y_" + std::to_string(r + s + 2 * xi) + ", got up to Y_" +
+                std::to_string(J));
 
   EraResult out;
   out.block_rows = r;
@@ -127,14 +130,16 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
   const Index max_order = std::min(p * r, m * s);
   if (n > max_order)
     throw Error("ERA: order " + std::to_string(n) + " exceeds what a Hankel matrix of " + std::to_string(r) + "x" +
-                std::to_string(s) + " blocks of " + std::to_string(p) + "x" + std::to_string(m) +
-                " can realise (" + std::to_string(max_order) + "); give more Markov parameters");
+                std::to_string(s) + " blocks of " + std::to_string(p) + "x" + std::to_string(m) + " can realise (" +
+                std::to_string(max_order) + "); give more Markov parameters");
   const double floor =
-      std::max(1e-13, static_cast<double>(std::max(U.rows(), V.rows())) * std::numeric_limits<double>::epsilon()) * sv(0);
+      std::max(1e-13, static_cast<double>(std::max(U.rows(), V.rows())) * std::numeric_limits<double>::epsilon()) *
+      sv(0);
   if (!(sv(n - 1) > floor))
-    throw InsufficientData("ERA: order " + std::to_string(n) + " exceeds the numerical rank of the Hankel matrix (singular value " +
-                           std::to_string(n) + " is " + num(sv(n - 1)) + ", largest " + num(sv(0)) +
-                           "); the data show at most " + std::to_string(suggest_order(sv)) + " states");
+    throw InsufficientData("ERA: order " + std::to_string(n) +
+                           " exceeds the numerical rank of the Hankel matrix (singular value " + std::to_string(n) +
+                           " is " + num(sv(n - 1)) + ", largest " + num(sv(0)) + "); the data show at most " +
+                           std::to_string(suggest_order(sv)) + " states");
   out.order = n;
 
   const Eigen::MatrixXd Un = U.leftCols(n), Vn = V.leftCols(n);

@@ -27,10 +27,10 @@
 namespace ambid::ident {
 
 struct EraOptions {
-  Eigen::Index order = 0;          // states of the realisation; 0: the suggested order
-  Eigen::Index block_rows = 0;     // r; 0 with block_columns 0: Lee's rule (H(0) about square)
-  Eigen::Index block_columns = 0;  // s
-  bool data_correlation = false;   // ERA/DC
+  Eigen::Index order = 0;               // states of the realisation; 0: the suggested order
+  Eigen::Index block_rows = 0;          // r; 0 with block_columns 0: Lee's rule (H(0) about square)
+  Eigen::Index block_columns = 0;       // s
+  bool data_correlation = false;        // ERA/DC
   Eigen::Index correlation_blocks = 2;  // xi: ERA/DC uses (xi + 1) x (xi + 1) blocks of R
 };
 

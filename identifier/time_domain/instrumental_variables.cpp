@@ -11,7 +11,8 @@ LeastSquaresSolution solve_instrumental_variables(const Eigen::MatrixXd& phi, co
                                                   const LeastSquaresOptions& options) {
   const Eigen::Index rows = phi.rows(), p = phi.cols(), t = z.cols(), w = instruments.cols();
   if (z.rows() != rows || instruments.rows() != rows || static_cast<Eigen::Index>(names.size()) != p)
-    throw Error("instrumental variables: phi, z and the instruments must have the same rows and every regressor a name");
+    throw Error(
+        "instrumental variables: phi, z and the instruments must have the same rows and every regressor a name");
   if (w < p)
     throw InsufficientData("instrumental variables: " + std::to_string(w) + " instruments for " + std::to_string(p) +
                            " regressors; at least as many instruments as regressors are needed");
@@ -32,8 +33,10 @@ LeastSquaresSolution solve_instrumental_variables(const Eigen::MatrixXd& phi, co
   for (Eigen::Index j = 0; j < w; ++j) scale(j) = Rww.col(j).norm() > 0.0 ? 1.0 / Rww.col(j).norm() : 0.0;
   const Eigen::VectorXd sv = linalg::singular_values(Eigen::MatrixXd(Rww * scale.asDiagonal()));
   if (!(sv(w - 1) > 1e-10 * sv(0)))
-    throw InsufficientData("instrumental variables: the instruments are linearly dependent or zero (reciprocal "
-                           "condition " + std::to_string(sv(w - 1) / sv(0)) + "): they cannot separate the regressors");
+    throw InsufficientData(
+        "instrumental variables: the instruments are linearly dependent or zero (reciprocal "
+        "condition " +
+        std::to_string(sv(w - 1) / sv(0)) + "): they cannot separate the regressors");
   // Stage two: least squares on the projected equations.
   LeastSquaresAccumulator projected(p, t, names);
   projected.add(top.middleCols(w, p), top.rightCols(t));

@@ -6,8 +6,9 @@
 
 namespace ambid::ident {
 
-KalmanGainEstimate kalman_gain_from_markov(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, const MarkovSequence& gain,
-                                           Eigen::Index count, const LeastSquaresOptions& options) {
+KalmanGainEstimate kalman_gain_from_markov(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
+                                           const MarkovSequence& gain, Eigen::Index count,
+                                           const LeastSquaresOptions& options) {
   const Eigen::Index n = A.rows(), p = C.rows();
   if (A.cols() != n || C.cols() != n || n < 1 || p < 1)
     throw Error("Kalman gain: inconsistent A " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) + " and C " +

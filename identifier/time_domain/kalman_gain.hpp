@@ -24,7 +24,8 @@ struct KalmanGainEstimate {
 // gain: N_0 .. N_J with J >= count; count >= 1 blocks enter (default J when 0). Throws Error
 // on inconsistent sizes and InsufficientData when [C; ...; C A^(count-1)] does not have full
 // column rank (the model is not observable within count steps).
-KalmanGainEstimate kalman_gain_from_markov(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C, const MarkovSequence& gain,
-                                           Eigen::Index count = 0, const LeastSquaresOptions& options = {});
+KalmanGainEstimate kalman_gain_from_markov(const Eigen::MatrixXd& A, const Eigen::MatrixXd& C,
+                                           const MarkovSequence& gain, Eigen::Index count = 0,
+                                           const LeastSquaresOptions& options = {});
 
 }  // namespace ambid::ident

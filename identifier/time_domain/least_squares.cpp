@@ -73,8 +73,8 @@ LeastSquaresAccumulator::LeastSquaresAccumulator(Eigen::Index regressors, Eigen:
                                                  std::vector<std::string> regressor_names)
     : regressors_(regressors), targets_(targets), names_(std::move(regressor_names)) {
   if (regressors < 1 || targets < 1)
-    throw Error("least squares needs at least one regressor and one target, got " +
-                std::to_string(regressors) + " and " + std::to_string(targets));
+    throw Error("least squares needs at least one regressor and one target, got " + std::to_string(regressors) +
+                " and " + std::to_string(targets));
   if (names_.empty()) {
     for (Eigen::Index j = 0; j < regressors; ++j) names_.push_back("regressor " + std::to_string(j));
   } else if (static_cast<Eigen::Index>(names_.size()) != regressors) {
@@ -104,8 +104,8 @@ void LeastSquaresAccumulator::add(const Eigen::Ref<const Eigen::MatrixXd>& phi,
   if (phi.cols() != regressors_ || z.cols() != targets_ || phi.rows() != z.rows())
     throw Error("least squares: block of " + std::to_string(phi.rows()) + "x" + std::to_string(phi.cols()) +
                 " regressors and " + std::to_string(z.rows()) + "x" + std::to_string(z.cols()) +
-                " targets does not fit " + std::to_string(regressors_) + " regressors and " +
-                std::to_string(targets_) + " targets");
+                " targets does not fit " + std::to_string(regressors_) + " regressors and " + std::to_string(targets_) +
+                " targets");
   for (Eigen::Index i = 0; i < phi.rows(); ++i) {
     if (!phi.row(i).allFinite() || !z.row(i).allFinite())
       throw Error("least squares: non-finite value in data row " + std::to_string(rows_ + i));
@@ -139,8 +139,8 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
   if (!(options.rank_tolerance < 1.0) || std::isnan(options.rank_tolerance))
     throw Error("least squares: rank_tolerance must be < 1, got " + num(options.rank_tolerance));
   if (rows_ <= p)
-    throw InsufficientData("least squares: " + std::to_string(rows_) + " data rows for " +
-                           std::to_string(p) + " regressors; at least " + std::to_string(p + 1) +
+    throw InsufficientData("least squares: " + std::to_string(rows_) + " data rows for " + std::to_string(p) +
+                           " regressors; at least " + std::to_string(p + 1) +
                            " rows are needed (more data, or fewer regressors)");
 
   const Eigen::MatrixXd R = factor();
@@ -189,20 +189,18 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
   if (out.rank < p) {
     const Eigen::Index missing = p - out.rank;
     throw InsufficientData("least squares: the regressors are rank deficient: numerical rank " +
-                           std::to_string(out.rank) + " of " + std::to_string(p) + " (" +
-                           std::to_string(missing) + (missing == 1 ? " direction" : " directions") +
-                           " without excitation, relative tolerance " + num(tol) +
-                           "); the missing directions involve " +
+                           std::to_string(out.rank) + " of " + std::to_string(p) + " (" + std::to_string(missing) +
+                           (missing == 1 ? " direction" : " directions") + " without excitation, relative tolerance " +
+                           num(tol) + "); the missing directions involve " +
                            involved_regressors(svd.V, out.rank, p, names_) +
                            " (more exciting data, a lower model order, or regularization)");
   }
   out.condition_number = smax / out.singular_values(p - 1);
   if (!(out.condition_number <= options.max_condition))
-    throw InsufficientData("least squares: the regressors are ill-conditioned: condition number " +
-                           num(out.condition_number) + " (column-equilibrated) exceeds the limit " +
-                           num(options.max_condition) + "; the weakest direction involves " +
-                           involved_regressors(svd.V, p - 1, p, names_) +
-                           " (more exciting data, a lower model order, or regularization)");
+    throw InsufficientData(
+        "least squares: the regressors are ill-conditioned: condition number " + num(out.condition_number) +
+        " (column-equilibrated) exceeds the limit " + num(options.max_condition) + "; the weakest direction involves " +
+        involved_regressors(svd.V, p - 1, p, names_) + " (more exciting data, a lower model order, or regularization)");
   out.raw_condition_number = linalg::condition_number(S11);
 
   const auto S11u = S11.triangularView<Eigen::Upper>();
@@ -222,8 +220,7 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
 }
 
 LeastSquaresSolution solve_least_squares(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& z,
-                                         const LeastSquaresOptions& options,
-                                         std::vector<std::string> regressor_names) {
+                                         const LeastSquaresOptions& options, std::vector<std::string> regressor_names) {
   LeastSquaresAccumulator acc(phi.cols(), z.cols(), std::move(regressor_names));
   acc.add(phi, z);
   return acc.solve(options);

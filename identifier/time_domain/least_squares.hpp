@@ -38,16 +38,16 @@ struct LeastSquaresOptions {
 };
 
 struct LeastSquaresSolution {
-  Eigen::MatrixXd theta;                 // regressors x targets
-  Eigen::Index rows = 0;                 // data rows that went into the fit
-  Eigen::Index degrees_of_freedom = 0;   // rows - regressors
-  Eigen::Index rank = 0;                 // numerical rank of the column-equilibrated factor
-  double condition_number = 0.0;         // of the column-equilibrated (regularised) factor
-  double raw_condition_number = 0.0;     // of the (regularised) factor as is, unit dependent
-  Eigen::VectorXd singular_values;       // column-equilibrated factor, descending
-  Eigen::VectorXd column_norms;          // ||Phi(:, j)|| of every regressor
-  Eigen::MatrixXd residual_gram;         // E' E, targets x targets
-  Eigen::MatrixXd residual_covariance;   // E' E / degrees_of_freedom
+  Eigen::MatrixXd theta;                // regressors x targets
+  Eigen::Index rows = 0;                // data rows that went into the fit
+  Eigen::Index degrees_of_freedom = 0;  // rows - regressors
+  Eigen::Index rank = 0;                // numerical rank of the column-equilibrated factor
+  double condition_number = 0.0;        // of the column-equilibrated (regularised) factor
+  double raw_condition_number = 0.0;    // of the (regularised) factor as is, unit dependent
+  Eigen::VectorXd singular_values;      // column-equilibrated factor, descending
+  Eigen::VectorXd column_norms;         // ||Phi(:, j)|| of every regressor
+  Eigen::MatrixXd residual_gram;        // E' E, targets x targets
+  Eigen::MatrixXd residual_covariance;  // E' E / degrees_of_freedom
   // Unscaled parameter covariance: (Phi' Phi)^-1 from R11^-1 (sandwich form when regularised).
   // Cov(theta(i, j), theta(k, l)) = residual_covariance(j, l) * inverse_gram(i, k).
   Eigen::MatrixXd inverse_gram;
@@ -63,8 +63,7 @@ struct LeastSquaresSolution {
 class LeastSquaresAccumulator {
  public:
   // `regressor_names` (optional, one per regressor) are used in error messages.
-  LeastSquaresAccumulator(Eigen::Index regressors, Eigen::Index targets,
-                          std::vector<std::string> regressor_names = {});
+  LeastSquaresAccumulator(Eigen::Index regressors, Eigen::Index targets, std::vector<std::string> regressor_names = {});
 
   // Appends rows: phi is rows x regressors, z rows x targets. Throws Error on a dimension
   // mismatch or a non-finite entry (naming the row, counted from the first row ever added).

@@ -58,7 +58,8 @@ MarkovSequence feedback_solve(const MarkovSequence& g, const MarkovSequence& f, 
 
 // Largest singular value, from the largest eigenvalue of the small Gram matrix.
 double spectral_norm(const Eigen::MatrixXd& m) {
-  const Eigen::MatrixXd g = m.cols() <= m.rows() ? Eigen::MatrixXd(m.transpose() * m) : Eigen::MatrixXd(m * m.transpose());
+  const Eigen::MatrixXd g =
+      m.cols() <= m.rows() ? Eigen::MatrixXd(m.transpose() * m) : Eigen::MatrixXd(m * m.transpose());
   return std::sqrt(std::max(0.0, linalg::symmetric_eigenvalues(g).maxCoeff()));
 }
 
@@ -93,9 +94,11 @@ MarkovParameters markov_from_arx(const std::vector<Eigen::MatrixXd>& a, const st
   if (a.empty() || b.empty()) throw Error("markov_from_arx: needs at least a_1 and b_0");
   const Index p = a[0].rows(), m = b[0].cols();
   for (const auto& ai : a)
-    if (ai.rows() != p || ai.cols() != p) throw Error("markov_from_arx: a_i is " + dims(ai) + ", expected square " + std::to_string(p));
+    if (ai.rows() != p || ai.cols() != p)
+      throw Error("markov_from_arx: a_i is " + dims(ai) + ", expected square " + std::to_string(p));
   for (const auto& bi : b)
-    if (bi.rows() != p || bi.cols() != m) throw Error("markov_from_arx: b_i is " + dims(bi) + ", expected " + dims(b[0]));
+    if (bi.rows() != p || bi.cols() != m)
+      throw Error("markov_from_arx: b_i is " + dims(bi) + ", expected " + dims(b[0]));
   MarkovParameters out;
   out.system.push_back(b[0]);
   out.gain.push_back(Eigen::MatrixXd::Identity(p, p));
@@ -117,8 +120,8 @@ MarkovParameters markov_from_arx(const std::vector<Eigen::MatrixXd>& a, const st
 
 MarkovParameters markov_from_arx(const ArxModel& arx, Index count) {
   if (arx.targets != arx.outputs)
-    throw Error("markov_from_arx: the ARX target is not its own output (" + std::to_string(arx.targets) +
-                " targets, " + std::to_string(arx.outputs) + " outputs); use secondary_markov_from_arx");
+    throw Error("markov_from_arx: the ARX target is not its own output (" + std::to_string(arx.targets) + " targets, " +
+                std::to_string(arx.outputs) + " outputs); use secondary_markov_from_arx");
   return markov_from_arx(arx.a, arx.b, count);
 }
 
@@ -203,8 +206,8 @@ ControllerMarkov controller_markov(const Eigen::MatrixXd& A, const Eigen::Matrix
     throw Error("controller_markov: " + std::to_string(plant_inputs) + " plant inputs but the controller has " +
                 std::to_string(B.cols()) + " inputs");
   if (C.rows() != plant_inputs)
-    throw Error("controller_markov: the controller has " + std::to_string(C.rows()) + " outputs, expected one per plant input (" +
-                std::to_string(plant_inputs) + ")");
+    throw Error("controller_markov: the controller has " + std::to_string(C.rows()) +
+                " outputs, expected one per plant input (" + std::to_string(plant_inputs) + ")");
   for (Index j = 0; j < plant_inputs; ++j)
     if (D.col(j).norm() != 0.0)
       throw Error("controller_markov: the controller has direct feedthrough from plant input " + std::to_string(j + 1) +
@@ -266,7 +269,8 @@ std::vector<double> markov_errors_percent(const MarkovSequence& truth, const Mar
     const Eigen::MatrixXd& t = truth[static_cast<std::size_t>(k)];
     const Eigen::MatrixXd& h = estimate[static_cast<std::size_t>(k)];
     if (t.rows() != h.rows() || t.cols() != h.cols())
-      throw Error("markov_errors_percent: Markov parameter " + std::to_string(k) + " is " + dims(h) + ", truth " + dims(t));
+      throw Error("markov_errors_percent: Markov parameter " + std::to_string(k) + " is " + dims(h) + ", truth " +
+                  dims(t));
     const double nt = spectral_norm(t);
     if (!(nt > 0.0)) throw Error("markov_errors_percent: true Markov parameter " + std::to_string(k) + " is zero");
     const Eigen::MatrixXd diff = t - h;

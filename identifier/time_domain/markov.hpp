@@ -51,11 +51,9 @@ MarkovParameters markov_from_arx(const ArxModel& arx, Eigen::Index count);
 //   W_0 = 0,    W_k =       sum_{i=1..k} c_i N_(k-i)       (Lee 4.31)
 // For z = -F x (full-state feedback) these are -F A^(k-1) B and -F A^(k-1) G.
 // Needs primary sequences of length >= count + 1.
-MarkovParameters secondary_markov_from_arx(const std::vector<Eigen::MatrixXd>& c,
-                                           const std::vector<Eigen::MatrixXd>& d,
+MarkovParameters secondary_markov_from_arx(const std::vector<Eigen::MatrixXd>& c, const std::vector<Eigen::MatrixXd>& d,
                                            const MarkovParameters& primary, Eigen::Index count);
-MarkovParameters secondary_markov_from_arx(const ArxModel& arx, const MarkovParameters& primary,
-                                           Eigen::Index count);
+MarkovParameters secondary_markov_from_arx(const ArxModel& arx, const MarkovParameters& primary, Eigen::Index count);
 
 // Lee (2.24)/(2.25) as printed, for a controller u = Yd * y + r (Yd_0 = D_d, Yd_k =
 // C_d A_d^(k-1) B_d):

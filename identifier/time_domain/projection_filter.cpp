@@ -41,7 +41,8 @@ ProjectionFilterResult identify_projection_filter(const Eigen::MatrixXd& y, cons
     throw Error("projection filter: y " + dims(y) + ", u " + dims(u) + " and uf " + dims(uf) +
                 " must have the same samples, and uf one column per plant input");
   if (p < 1 || m < 1) throw Error("projection filter: needs at least one output and one input channel");
-  if (options.arx_order < 1) throw Error("projection filter: arx_order must be >= 1, got " + std::to_string(options.arx_order));
+  if (options.arx_order < 1)
+    throw Error("projection filter: arx_order must be >= 1, got " + std::to_string(options.arx_order));
   if (J < 2) throw Error("projection filter: markov_count must be >= 2, got " + std::to_string(J));
   if (!(options.sample_time > 0.0)) throw Error("projection filter: sample_time must be positive");
 
@@ -69,7 +70,8 @@ ProjectionFilterResult identify_projection_filter(const Eigen::MatrixXd& y, cons
     for (Index k = 0; k <= J; ++k) {
       Eigen::MatrixXd s(p + m, m + p);
       s << out.plant_markov.system[static_cast<std::size_t>(k)], out.plant_markov.gain[static_cast<std::size_t>(k)],
-          out.feedback_markov.system[static_cast<std::size_t>(k)], out.feedback_markov.gain[static_cast<std::size_t>(k)];
+          out.feedback_markov.system[static_cast<std::size_t>(k)],
+          out.feedback_markov.gain[static_cast<std::size_t>(k)];
       combined.push_back(s);
     }
     const EraResult e = era(combined, options.sample_time, options.era);
@@ -89,9 +91,11 @@ ProjectionFilterResult identify_projection_filter(const Eigen::MatrixXd& y, cons
   const Index n = out.plant.states();
   Index count = options.gain_count;
   if (count == 0) count = std::min<Index>(J, (2 * n + std::min(p, m) - 1) / std::min(p, m) + 1);
-  if (count > J) throw Error("projection filter: gain_count " + std::to_string(count) + " exceeds markov_count " + std::to_string(J));
-  const KalmanGainEstimate k = kalman_gain_from_markov(out.plant.A, out.plant.C, out.plant_markov.gain, count,
-                                                       options.least_squares);
+  if (count > J)
+    throw Error("projection filter: gain_count " + std::to_string(count) + " exceeds markov_count " +
+                std::to_string(J));
+  const KalmanGainEstimate k =
+      kalman_gain_from_markov(out.plant.A, out.plant.C, out.plant_markov.gain, count, options.least_squares);
   out.predictor_gain = k.predictor_gain;
   out.filter_gain = k.filter_gain;
   out.feedback_gain = feedback_gain(out.plant, out.feedback_markov.system, count, options.least_squares);

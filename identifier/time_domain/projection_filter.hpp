@@ -36,15 +36,15 @@ struct ProjectionFilterOptions {
 };
 
 struct ProjectionFilterResult {
-  DiscreteSystem plant;                 // A, B, C, D in ERA coordinates
-  Eigen::MatrixXd predictor_gain;       // AK
-  Eigen::MatrixXd filter_gain;          // K; empty when A is singular
-  Eigen::MatrixXd feedback_gain;        // F of uf = -F x (same coordinates)
+  DiscreteSystem plant;            // A, B, C, D in ERA coordinates
+  Eigen::MatrixXd predictor_gain;  // AK
+  Eigen::MatrixXd filter_gain;     // K; empty when A is singular
+  Eigen::MatrixXd feedback_gain;   // F of uf = -F x (same coordinates)
   Eigen::VectorXd hankel_singular_values;
   Eigen::Index suggested_order = 0;
   ArxModel output_arx, feedback_arx;
-  MarkovParameters plant_markov;        // Y_k = C A^(k-1) B (Y_0 = D), N_k = C A^(k-1) AK
-  MarkovParameters feedback_markov;     // -F A^(k-1) B, -F A^(k-1) AK
+  MarkovParameters plant_markov;     // Y_k = C A^(k-1) B (Y_0 = D), N_k = C A^(k-1) AK
+  MarkovParameters feedback_markov;  // -F A^(k-1) B, -F A^(k-1) AK
 };
 
 // y: samples x outputs, u: samples x inputs (total plant input), uf: samples x inputs.

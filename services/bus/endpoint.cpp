@@ -6,8 +6,8 @@
 namespace ambid::bus {
 
 std::string_view name(StatusKind kind) {
-  constexpr std::array<std::string_view, 5> names{"matched", "unmatched", "alive",
-                                                  "liveliness_lost", "deadline_missed"};
+  constexpr std::array<std::string_view, 5> names{"matched", "unmatched", "alive", "liveliness_lost",
+                                                  "deadline_missed"};
   return names.at(static_cast<std::size_t>(kind));
 }
 

@@ -10,8 +10,7 @@ namespace ambid::bus {
 
 std::unique_ptr<Bus> make_bus(std::string_view vendor, int domain, std::string_view profile) {
   if (domain < 0 || domain > max_domain) {
-    throw Error("DDS domain " + std::to_string(domain) + " is outside 0.." +
-                std::to_string(max_domain));
+    throw Error("DDS domain " + std::to_string(domain) + " is outside 0.." + std::to_string(max_domain));
   }
   if (profile.empty()) throw Error("empty DDS network profile (use \"loopback\" or an XML file)");
   if (vendor == "fastdds") return make_fastdds_bus(domain, profile);

@@ -11,7 +11,6 @@ namespace ambid::bus {
 
 // vendor: "fastdds" or "cyclone"; domain: 0..max_domain; profile: loopback_profile or an XML
 // file (see bus.hpp). Throws Error naming what was wrong.
-std::unique_ptr<Bus> make_bus(std::string_view vendor, int domain,
-                              std::string_view profile = loopback_profile);
+std::unique_ptr<Bus> make_bus(std::string_view vendor, int domain, std::string_view profile = loopback_profile);
 
 }  // namespace ambid::bus

@@ -15,9 +15,9 @@ namespace ambid::bus {
 enum class Profile { samples, commands, state, health };
 
 struct Qos {
-  bool transient_local = false;  // else VOLATILE
-  int depth = 1;                 // KEEP_LAST per instance; for transient-local also the depth a
-                                 // late joiner gets (Cyclone durability_service, pitfall P5)
+  bool transient_local = false;             // else VOLATILE
+  int depth = 1;                            // KEEP_LAST per instance; for transient-local also the depth a
+                                            // late joiner gets (Cyclone durability_service, pitfall P5)
   std::chrono::milliseconds deadline{0};    // per instance; 0: none
   std::chrono::milliseconds liveliness{0};  // AUTOMATIC lease; 0: infinite
 };

@@ -31,8 +31,7 @@ class Checker {
     }
   }
 
-  void texts(std::string_view field, const std::vector<std::string>& values, std::size_t max,
-             std::size_t bound) const {
+  void texts(std::string_view field, const std::vector<std::string>& values, std::size_t max, std::size_t bound) const {
     size(field, values.size(), max);
     for (std::size_t i = 0; i < values.size(); ++i) {
       text(indexed(field, i), values[i], bound);
@@ -41,16 +40,14 @@ class Checker {
 
   void size(std::string_view field, std::size_t n, std::size_t max) const {
     if (n > max) {
-      fail(field, "has " + std::to_string(n) + " entries, more than its bound of " +
-                      std::to_string(max));
+      fail(field, "has " + std::to_string(n) + " entries, more than its bound of " + std::to_string(max));
     }
   }
 
-  void length(std::string_view field, std::size_t n, std::size_t expected,
-              std::string_view because) const {
+  void length(std::string_view field, std::size_t n, std::size_t expected, std::string_view because) const {
     if (n != expected) {
-      fail(field, "has " + std::to_string(n) + " entries, expected " + std::string(because) +
-                      " = " + std::to_string(expected));
+      fail(field, "has " + std::to_string(n) + " entries, expected " + std::string(because) + " = " +
+                      std::to_string(expected));
     }
   }
 
@@ -103,8 +100,7 @@ void signal_group(const Checker& check, std::string_view group, const PlantSampl
   check.texts(names_field, names, limits::max_channels, limits::name_length);
   check.size(group, values.size(), limits::max_batch_values);
   check.length(group, values.size(), std::size_t{m.count} * names.size(),
-               "count x " + names_field + " = " + std::to_string(m.count) + " x " +
-                   std::to_string(names.size()));
+               "count x " + names_field + " = " + std::to_string(m.count) + " x " + std::to_string(names.size()));
 }
 
 }  // namespace
@@ -161,10 +157,8 @@ void validate(const FrequencyResponse& m) {
   check.texts("inputs", m.inputs, limits::max_channels, limits::name_length);
   check.size("frequencies", m.frequencies.size(), limits::max_frequencies);
   const std::size_t expected = m.outputs.size() * m.inputs.size() * m.frequencies.size();
-  const std::string because = "outputs x inputs x frequencies = " +
-                              std::to_string(m.outputs.size()) + " x " +
-                              std::to_string(m.inputs.size()) + " x " +
-                              std::to_string(m.frequencies.size());
+  const std::string because = "outputs x inputs x frequencies = " + std::to_string(m.outputs.size()) + " x " +
+                              std::to_string(m.inputs.size()) + " x " + std::to_string(m.frequencies.size());
   check.size("re", m.re.size(), limits::max_response_values);
   check.length("re", m.re.size(), expected, because);
   check.size("im", m.im.size(), limits::max_response_values);

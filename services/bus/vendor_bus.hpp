@@ -42,8 +42,7 @@ class VendorFactories<Base, TypeList<>> : public Base {
 };
 
 template <class Base, class Message, class... Rest>
-class VendorFactories<Base, TypeList<Message, Rest...>>
-    : public VendorFactories<Base, TypeList<Rest...>> {
+class VendorFactories<Base, TypeList<Message, Rest...>> : public VendorFactories<Base, TypeList<Rest...>> {
   using Next = VendorFactories<Base, TypeList<Rest...>>;
 
  protected:
@@ -59,8 +58,7 @@ class VendorFactories<Base, TypeList<Message, Rest...>>
 };
 
 template <class Participant, template <class> class VendorWriter, template <class> class VendorReader>
-using VendorBusBase =
-    VendorFactories<VendorBase<Participant, VendorWriter, VendorReader>, BusMessages>;
+using VendorBusBase = VendorFactories<VendorBase<Participant, VendorWriter, VendorReader>, BusMessages>;
 
 }  // namespace detail
 

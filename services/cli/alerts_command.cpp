@@ -7,10 +7,10 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "services/cli/operator_commands.hpp"
 #include "services/convert/alert.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/stop_signal.hpp"
-#include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -71,7 +71,8 @@ void add_alerts_command(CLI::App& app) {
   c->add_flag("--follow", args->follow, "keep printing new alerts until interrupted");
   c->add_option("--wait", args->wait, "without --follow: how long to collect alerts (s)")->capture_default_str();
   c->add_option("--until", args->until, "LEVEL:PARAMETER: exit 0 at the first such alert (implies --follow)");
-  c->add_option("--timeout", args->timeout, "give up after this many seconds (exit 3); 0: never")->capture_default_str();
+  c->add_option("--timeout", args->timeout, "give up after this many seconds (exit 3); 0: never")
+      ->capture_default_str();
   c->add_flag("--all-plants", args->all_plants, "alerts of every plant, not only --plant-id");
   c->callback([args] { run(*args); });
 }

@@ -29,16 +29,18 @@ void add_audit_command(CLI::App& app) {
   CLI::App* audit = app.add_subcommand(
       "audit", "compare the nominal model with a measured experiment, name the missing effect, fit it");
   audit->add_option("experiment", args->experiment, "experiment (.json sidecar, .csv or stem)")->required();
-  audit->add_option("--out", args->out, "output directory: audit.json, model-extended.json, report.html")
-      ->required();
-  audit->add_option("--estimation-fraction", args->options.estimation_fraction,
-                    "leading part of the record used for fitting; the rest validates")
+  audit->add_option("--out", args->out, "output directory: audit.json, model-extended.json, report.html")->required();
+  audit
+      ->add_option("--estimation-fraction", args->options.estimation_fraction,
+                   "leading part of the record used for fitting; the rest validates")
       ->capture_default_str();
-  audit->add_option("--false-acceptance", args->options.false_acceptance,
-                    "probability of naming a cause when the nominal model is right (noise only)")
+  audit
+      ->add_option("--false-acceptance", args->options.false_acceptance,
+                   "probability of naming a cause when the nominal model is right (noise only)")
       ->capture_default_str();
-  audit->add_option("--fitted-candidates", args->options.fitted_candidates,
-                    "how many of the screened candidates are fitted")
+  audit
+      ->add_option("--fitted-candidates", args->options.fitted_candidates,
+                   "how many of the screened candidates are fitted")
       ->capture_default_str();
   audit->callback([args] {
     const ReadResult read = read_experiment(args->experiment);

@@ -143,8 +143,8 @@ std::string amplitude_table(const diag::AuditResult& r) {
   }
   h << "<p>Median log|G_meas / G_nominal| over the excited lines, per contiguous part of the record: the same in "
        "every part for a linear model error, changing with the excitation amplitude for a nonlinear one. "
-    << (a.dependent ? "<b>The error depends on the amplitude</b>" : "No amplitude dependence")
-    << " (max |z| " << a.max_abs_z << " between the parts of highest and lowest excitation).</p>\n"
+    << (a.dependent ? "<b>The error depends on the amplitude</b>" : "No amplitude dependence") << " (max |z| "
+    << a.max_abs_z << " between the parts of highest and lowest excitation).</p>\n"
     << "<table><tr><th>part</th><th>excitation rms</th>";
   for (const auto& y : r.outputs)
     for (const auto& u : r.inputs) h << "<th>" << xml_escape(y + "/" + u) << "</th>";
@@ -217,8 +217,8 @@ std::string audit_report_html(const diag::AuditResult& r, const std::string& exp
       << "</td><td>";
     for (const auto& p : sim::effect_spec(f.effect.name).parameters)
       h << xml_escape(p.name) << " = " << f.effect.at(p.name) << " " << xml_escape(p.unit) << "<br>";
-    h << "</td><td>" << f.nrmse_total_after << "</td><td>" << f.test.z << "</td><td>" << (f.accepted ? "yes" : "no") << "</td><td>"
-      << xml_escape(f.evidence) << "</td></tr>\n";
+    h << "</td><td>" << f.nrmse_total_after << "</td><td>" << f.test.z << "</td><td>" << (f.accepted ? "yes" : "no")
+      << "</td><td>" << xml_escape(f.evidence) << "</td></tr>\n";
   }
   h << "</table>\n<p>A finding is accepted when its validation improvement z exceeds " << r.z_threshold
     << ": the probability that noise alone gets there for the best of " << r.findings.size() << " fitted candidates is "
@@ -236,10 +236,12 @@ std::string audit_report_html(const diag::AuditResult& r, const std::string& exp
   if (r.frfs.measured.lines() > 0) {
     h << "\n<h2>Plant frequency response (indirect closed-loop estimate)</h2>\n<p>G = S_yr S_ur<sup>+</sup> of the "
          "measurement and of each replayed model, on the lines where the inputs are coherent with the excitation.</p>\n"
-      << inline_svg(bode("Plant " + r.outputs.front() + "/" + r.inputs.front() + ": measured, nominal and extended model",
-                         r.outputs.front() + "/" + r.inputs.front(), r.frfs.measured, r.frfs.nominal,
-                         r.frfs.extended, extended, 0, 0))
-      << "\n<h2>Measured / model frequency response ratio</h2>\n" << inline_svg(ratio_plot(r, r.inputs));
+      << inline_svg(
+             bode("Plant " + r.outputs.front() + "/" + r.inputs.front() + ": measured, nominal and extended model",
+                  r.outputs.front() + "/" + r.inputs.front(), r.frfs.measured, r.frfs.nominal, r.frfs.extended,
+                  extended, 0, 0))
+      << "\n<h2>Measured / model frequency response ratio</h2>\n"
+      << inline_svg(ratio_plot(r, r.inputs));
   } else {
     h << "\n<p>The validation segment is too short (or not excited enough) for frequency responses.</p>";
   }

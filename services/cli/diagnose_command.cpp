@@ -8,9 +8,9 @@
 // file is one window. Fault isolation uses the closed-loop signatures of the first
 // experiment's plant and controller (diagnostics/fault_signatures.hpp). The windows of the
 // first N inputs form the baseline, learned by the
-// diagnostics engine (its mean and the scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the alerts, fields
-// of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the
-// trend store DIR/trends.sqlite.
+// diagnostics engine (its mean and the scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the
+// alerts, fields of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the trend store
+// DIR/trends.sqlite.
 //
 // Time: the experiment contract has no time key, so inputs are laid end to end in the order
 // given: an experiment lasts its record length, a model file 1 s; a window's time is its end.
@@ -44,7 +44,7 @@
 namespace ambid::cli {
 namespace {
 
-constexpr double kModelDuration = 1.0;  // s a model file occupies on the time axis
+constexpr double kModelDuration = 1.0;           // s a model file occupies on the time axis
 constexpr Eigen::Index kSettlingSamples = 1000;  // dropped from the first window of a record
 
 struct DiagnoseArguments {
@@ -79,9 +79,12 @@ bool is_model_file(const std::filesystem::path& path) {
 Input model_input(const std::string& file, double start, const std::string& plant_id) {
   const Model m = read_model(file);
   if (m.plant_model != "amb1dof_voltage")
-    throw Error(file + ": plant_model is '" + m.plant_model + "'; diagnose knows the parameters of amb1dof_voltage only");
+    throw Error(file + ": plant_model is '" + m.plant_model +
+                "'; diagnose knows the parameters of amb1dof_voltage only");
   try {
-    return {file, "model", {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)},
+    return {file,
+            "model",
+            {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)},
             std::nullopt};
   } catch (const Error& e) {
     throw Error(file + ": " + e.what());
@@ -124,8 +127,8 @@ std::string number(double v) {
   return s.str();
 }
 
-nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
-                              const diag::OfflineDiagnosis& d) {
+nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Input>& inputs,
+                              std::size_t baseline_windows, const diag::OfflineDiagnosis& d) {
   nlohmann::json j;
   j["format"] = "ambid-diagnosis/1";
   j["plant_id"] = a.plant_id;
@@ -133,11 +136,14 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
   j["baseline_windows"] = baseline_windows;
   j["inputs"] = nlohmann::json::array();
   for (const Input& in : inputs)
-    j["inputs"].push_back({{"file", in.file}, {"kind", in.kind}, {"windows", in.windows.size()},
-                           {"time_to", in.windows.back().time}});
+    j["inputs"].push_back(
+        {{"file", in.file}, {"kind", in.kind}, {"windows", in.windows.size()}, {"time_to", in.windows.back().time}});
   for (const auto& [key, b] : d.baselines)
-    j["baselines"][key.second] = {{"mean", b.mean}, {"extra_spread", b.extra_spread}, {"mean_sigma", b.mean_sigma},
-                                  {"reported_sigma", b.reported_sigma}, {"windows", b.windows}};
+    j["baselines"][key.second] = {{"mean", b.mean},
+                                  {"extra_spread", b.extra_spread},
+                                  {"mean_sigma", b.mean_sigma},
+                                  {"reported_sigma", b.reported_sigma},
+                                  {"windows", b.windows}};
   for (const auto& [key, level] : d.final_levels) j["levels"][key.second] = diag::to_string(level);
   j["alerts"] = nlohmann::json::array();
   for (const diag::Alert& alert : d.alerts) j["alerts"].push_back(diag::to_json(alert));
@@ -147,11 +153,11 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
 std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
                          const diag::OfflineDiagnosis& d) {
   std::ostringstream s;
-  s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first " << a.baseline
-    << " (" << baseline_windows << " windows)\n\n";
+  s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first "
+    << a.baseline << " (" << baseline_windows << " windows)\n\n";
   for (const Input& in : inputs)
-    s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s), to t = " << number(in.windows.back().time)
-      << " s\n";
+    s << "  " << in.kind << " " << in.file << ": " << in.windows.size()
+      << " window(s), to t = " << number(in.windows.back().time) << " s\n";
   s << "\n  parameter  level  baseline      extra spread  latest\n";
   for (const auto& [key, level] : d.final_levels) {
     const diag::Baseline& b = d.baselines.at(key);
@@ -167,8 +173,8 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
   if (d.alerts.empty()) s << "  none\n";
   for (const diag::Alert& alert : d.alerts)
     s << "  t = " << number(alert.time) << " s  " << diag::to_string(alert.level) << "  " << alert.fault
-      << (alert.channel ? " channel " + std::to_string(*alert.channel) : std::string()) << "  " << alert.parameter << ": "
-      << alert.message << "\n";
+      << (alert.channel ? " channel " + std::to_string(*alert.channel) : std::string()) << "  " << alert.parameter
+      << ": " << alert.message << "\n";
   s << "\nDetection works on z = (estimate - baseline mean) / sigma_eff with sigma_eff = sqrt(sigma^2 + extra^2):\n"
        "the identifier's one-sigma widened by the scatter of the baseline windows it does not explain.\n";
   return s.str();
@@ -246,7 +252,8 @@ void run(const DiagnoseArguments& a) {
   const std::string summary = summary_text(a, inputs, baseline_windows, d);
   report::write_file_atomically(dir / "summary.txt", summary);
   write_trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction);
-  std::cout << summary << "wrote " << (dir / "diagnosis.json").string() << ", summary.txt, trend_*.svg, trends.sqlite\n";
+  std::cout << summary << "wrote " << (dir / "diagnosis.json").string()
+            << ", summary.txt, trend_*.svg, trends.sqlite\n";
 }
 
 }  // namespace
@@ -256,7 +263,8 @@ void add_diagnose_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("diagnose", "diagnose a time-ordered list of experiments or model files");
   cmd->add_option("inputs", args->inputs, "experiments (.json sidecar, .csv or stem) or model.json files, oldest first")
       ->required();
-  cmd->add_option("--baseline", args->baseline, "how many of the first inputs form the baseline")->capture_default_str();
+  cmd->add_option("--baseline", args->baseline, "how many of the first inputs form the baseline")
+      ->capture_default_str();
   cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
       ->capture_default_str();
   cmd->add_option("--method", args->method,

@@ -30,10 +30,12 @@ using report::format_number;
 // What the plots and frf.json need beyond the plant: refuse data that cannot give them.
 void require_loop_data(const Experiment& e, const std::string& path) {
   if (!e.has_excitation())
-    throw InsufficientData(path + ": records no excitation r (signals.r); the plant FRF from closed-loop data needs one");
+    throw InsufficientData(path +
+                           ": records no excitation r (signals.r); the plant FRF from closed-loop data needs one");
   if (!e.controller)
-    throw InsufficientData(path + ": records no controller; the sensitivity functions (ISO 14839-3) need the "
-                                  "controller that closed the loop");
+    throw InsufficientData(path +
+                           ": records no controller; the sensitivity functions (ISO 14839-3) need the "
+                           "controller that closed the loop");
 }
 
 std::string complex_text(std::complex<double> z) {
@@ -44,9 +46,11 @@ std::string complex_text(std::complex<double> z) {
 
 void print_summary(const ident::FrfReport& r, const std::string& path, const std::string& out, std::size_t plots,
                    double band_top_hz) {
-  std::cout << "ambid frf: " << path << ": " << r.method << " estimate (" << r.excitation << " excitation, "
-            << r.blocks << (r.method == "periodic" ? " blocks" : r.method == "welch" ? " segments" : " steps") << "), " << r.frequency_hz.size()
-            << " lines " << format_number(r.frequency_hz(0)) << "-"
+  std::cout << "ambid frf: " << path << ": " << r.method << " estimate (" << r.excitation << " excitation, " << r.blocks
+            << (r.method == "periodic" ? " blocks"
+                : r.method == "welch"  ? " segments"
+                                       : " steps")
+            << "), " << r.frequency_hz.size() << " lines " << format_number(r.frequency_hz(0)) << "-"
             << format_number(r.frequency_hz(r.frequency_hz.size() - 1)) << " Hz\n";
   for (const ident::SensitivityPeak& p : r.sensitivity_peaks)
     std::cout << "  sensitivity " << p.loop << ": peak " << format_number(p.magnitude_db) << " dB at "
@@ -59,7 +63,8 @@ void print_summary(const ident::FrfReport& r, const std::string& path, const std
       (pole_in_band(poles(i), band_top_hz) ? in_band : beyond) += " " + complex_text(poles(i));
     }
     std::cout << "  model " << f.name << ": order " << f.fit.model.numerator_degree() << "/"
-              << f.fit.model.denominator_degree() << ", unstable poles:" << (in_band.empty() ? " none" : in_band + " rad/s");
+              << f.fit.model.denominator_degree()
+              << ", unstable poles:" << (in_band.empty() ? " none" : in_band + " rad/s");
     if (!beyond.empty()) std::cout << " (beyond the fitted band, not resolved:" << beyond << ")";
     std::cout << "\n";
   }

@@ -21,8 +21,8 @@ json complex_pairs(const Eigen::VectorXcd& v) {
 }
 
 json plant_json(const ident::PlantPair& pair, double confidence) {
-  json p = {{"output", pair.output}, {"input", pair.input},
-            {"re", list(pair.value.real())}, {"im", list(pair.value.imag())}};
+  json p = {
+      {"output", pair.output}, {"input", pair.input}, {"re", list(pair.value.real())}, {"im", list(pair.value.imag())}};
   if (pair.variance.size() > 0) p["noise_std"] = list(pair.variance.cwiseSqrt());
   if (pair.bound.size() > 0) {
     p["bound"] = list(pair.bound);
@@ -47,7 +47,7 @@ json model_json(const ident::FittedPair& fitted, double top_hz) {
           {"denominator_degree", m.denominator_degree()},
           {"poles", complex_pairs(poles)},
           {"pole_std", list(fitted.fit.pole_std)},
-          {"unstable_poles", unstable},                 // within the fitted band
+          {"unstable_poles", unstable},                // within the fitted band
           {"unstable_poles_beyond_band", unresolved},  // not resolved by the data
           {"zeros", complex_pairs(m.zeros())},
           {"gain", m.gain()},
@@ -98,8 +98,7 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
   if (report.controller_check && report.controller_check->relative_error.size() > 0) {
     Eigen::VectorXd e = report.controller_check->relative_error;
     std::sort(e.data(), e.data() + e.size());
-    out["controller_check"] = {{"median_relative_error", e(e.size() / 2)},
-                               {"max_relative_error", e(e.size() - 1)}};
+    out["controller_check"] = {{"median_relative_error", e(e.size() / 2)}, {"max_relative_error", e(e.size() - 1)}};
   }
   out["notes"] = report.notes;
   return out;

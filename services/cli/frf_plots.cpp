@@ -28,8 +28,8 @@ std::vector<double> db(const Eigen::VectorXcd& v) {
 
 // Phase in degrees within (-180, 180]; for a line, NaN is put where the phase wraps so that the
 // plot shows a gap instead of a vertical jump.
-void wrapped_phase(const Eigen::VectorXcd& v, const std::vector<double>& f, bool line_gaps,
-                   std::vector<double>& x, std::vector<double>& y) {
+void wrapped_phase(const Eigen::VectorXcd& v, const std::vector<double>& f, bool line_gaps, std::vector<double>& x,
+                   std::vector<double>& y) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     const double phase = std::arg(v(i)) * 180.0 / std::numbers::pi;
     if (line_gaps && !y.empty() && std::abs(phase - y.back()) > 180.0) {
@@ -74,8 +74,9 @@ report::Axes bode_axes(const std::string& y_label, bool bottom) {
   return axes;
 }
 
-report::Figure bode_figure(const ident::PlantPair& pair, const ident::FittedPair* fitted, const ident::FrfReport& report,
-                           const Experiment& experiment, const ident::FrfAnalysisOptions& options) {
+report::Figure bode_figure(const ident::PlantPair& pair, const ident::FittedPair* fitted,
+                           const ident::FrfReport& report, const Experiment& experiment,
+                           const ident::FrfAnalysisOptions& options) {
   const std::vector<double> f = std_vector(report.frequency_hz);
   report::Axes magnitude = bode_axes("|" + pair.name + "| [dB SI]", false);
   report::Axes phase = bode_axes("phase [deg]", !pair.coherence.size());
@@ -98,7 +99,8 @@ report::Figure bode_figure(const ident::PlantPair& pair, const ident::FittedPair
   }
   if (pair.bound.size() > 0) {
     const int percent = static_cast<int>(std::lround(100.0 * options.confidence));
-    magnitude.series.push_back(report::line(std::to_string(percent) + " % noise bound", f, db(pair.bound.cast<std::complex<double>>())));
+    magnitude.series.push_back(
+        report::line(std::to_string(percent) + " % noise bound", f, db(pair.bound.cast<std::complex<double>>())));
     magnitude.series.back().style.color = "#999999";
     magnitude.series.back().style.line_width = 1.0;
   }
@@ -180,7 +182,8 @@ std::vector<std::string> write_frf_plots(const ident::FrfReport& report, const E
         magnitude(l) = std::abs(s(i, i));
       }
     }
-    write("sensitivity_" + file_safe(peak.loop) + ".svg", sensitivity_figure(peak.loop, magnitude, peak, report, options));
+    write("sensitivity_" + file_safe(peak.loop) + ".svg",
+          sensitivity_figure(peak.loop, magnitude, peak, report, options));
   }
   return written;
 }

@@ -28,7 +28,8 @@ void print_summary(const Model& m, const std::string& out) {
   }
   for (const auto& [name, value] : m.fit_nrmse) std::cout << "  validation nrmse " << name << ": " << value << "\n";
   if (m.extra.json().contains("warnings"))
-    for (const auto& w : m.extra.json()["warnings"]) std::cerr << "ambid identify: warning: " << w.get<std::string>() << "\n";
+    for (const auto& w : m.extra.json()["warnings"])
+      std::cerr << "ambid identify: warning: " << w.get<std::string>() << "\n";
   std::cout << "  wrote " << out << "\n";
 }
 

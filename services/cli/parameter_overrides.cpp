@@ -11,8 +11,7 @@ std::map<std::string, double> parse_parameter_overrides(const std::vector<std::s
   std::map<std::string, double> values;
   for (const auto& item : items) {
     const auto eq = item.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw Error("--set expects NAME=VALUE, got '" + item + "'");
+    if (eq == std::string::npos || eq == 0) throw Error("--set expects NAME=VALUE, got '" + item + "'");
     const std::string name = item.substr(0, eq), text = item.substr(eq + 1);
     double value = 0.0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);

@@ -7,10 +7,10 @@
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "services/cli/operator_commands.hpp"
 #include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/scenario_json.hpp"
-#include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -38,7 +38,8 @@ void run(const RecordArguments& args) {
                   std::to_string(args.timeout) + " s");
     bus->wait(std::chrono::milliseconds(100));
     for (const auto& b : samples->take())
-      if (b.plant_id == args.bus.plant_id && window.add(b).outcome == convert::SampleWindow::Outcome::rejected) ++rejected;
+      if (b.plant_id == args.bus.plant_id && window.add(b).outcome == convert::SampleWindow::Outcome::rejected)
+        ++rejected;
   }
   const Experiment e = window.take();
   write_experiment(e, args.out);

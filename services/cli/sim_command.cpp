@@ -25,8 +25,8 @@ void print_summary(const Experiment& e, const std::string& stem, const sim::Clos
   const Eigen::MatrixXd dy = e.y_deviation();
   const Eigen::MatrixXd du = e.u_deviation();
   auto rms = [](const Eigen::VectorXd& v) { return std::sqrt(v.squaredNorm() / double(v.size())); };
-  std::cout << "ambid sim: " << e.plant.model << ", " << e.samples() << " samples at "
-            << 1.0 / e.sample_time << " Hz (" << double(e.samples()) * e.sample_time << " s)\n";
+  std::cout << "ambid sim: " << e.plant.model << ", " << e.samples() << " samples at " << 1.0 / e.sample_time << " Hz ("
+            << double(e.samples()) * e.sample_time << " s)\n";
   for (Eigen::Index j = 0; j < dy.cols(); ++j)
     std::cout << "  " << e.y_names[std::size_t(j)] << ": rms deviation " << rms(dy.col(j)) << ", peak "
               << dy.col(j).cwiseAbs().maxCoeff() << "\n";
@@ -59,7 +59,8 @@ void route_overrides(const std::map<std::string, double>& values, const std::vec
     const auto dot = key.find('.');
     if (dot != std::string::npos) {
       const std::string effect = key.substr(0, dot);
-      if (!per_effect.count(effect)) throw Error("--set " + key + ": effect '" + effect + "' is not chosen with --effect");
+      if (!per_effect.count(effect))
+        throw Error("--set " + key + ": effect '" + effect + "' is not chosen with --effect");
       per_effect[effect][key.substr(dot + 1)] = value;
       continue;
     }
@@ -106,8 +107,7 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--position-noise", o.position_noise, "sensor noise std of x (m)")->capture_default_str();
   sim->add_option("--current-noise", o.current_noise, "sensor noise std of i1, i2 (A)")->capture_default_str();
   sim->add_option("--force-noise", o.force_noise, "process noise std of the rotor force (N)")->capture_default_str();
-  sim->add_option("--input-limit", o.input_limit, "amplifier command limit |u| (V), 0 for none")
-      ->capture_default_str();
+  sim->add_option("--input-limit", o.input_limit, "amplifier command limit |u| (V), 0 for none")->capture_default_str();
   sim->add_option("--set", args->overrides,
                   "NAME=VALUE: a true plant parameter or an effect parameter (repeatable; EFFECT.NAME=VALUE when "
                   "two effects share a name); the sidecar keeps the nominal value");

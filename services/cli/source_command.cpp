@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "services/cli/operator_commands.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -29,7 +29,8 @@ void run(const SourceArguments& args) {
   auto commands = bus->writer<bus::PlantSourceCommand>();
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.timeout);
   while (commands->matched() == 0) {  // commands are volatile: write only once the plant listens
-    if (std::chrono::steady_clock::now() > deadline) throw Error("no plant daemon on domain " + std::to_string(args.bus.domain));
+    if (std::chrono::steady_clock::now() > deadline)
+      throw Error("no plant daemon on domain " + std::to_string(args.bus.domain));
     bus->wait(std::chrono::milliseconds(50));
   }
   // Matched here does not mean the plant's reader matched this writer yet (a volatile command

@@ -5,10 +5,10 @@
 #include <map>
 #include <memory>
 
+#include "services/cli/operator_commands.hpp"
 #include "services/convert/alert.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/cli/operator_commands.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -38,15 +38,15 @@ void run(const StatusArguments& args) {
     throw CLI::RuntimeError(3);
   }
   for (const auto& [id, s] : plants)
-    std::cout << "plant " << id << ": source " << convert::source_kind_name(s.kind) << " " << s.target << " since plant time " << s.time
-              << " s"
+    std::cout << "plant " << id << ": source " << convert::source_kind_name(s.kind) << " " << s.target
+              << " since plant time " << s.time << " s"
               << (s.command_accepted ? (s.message.empty() ? "" : " (" + s.message + ")")
                                      : " (last command refused: " + s.message + ")")
               << "\n";
   constexpr const char* zones = "-ABCD";
   for (const auto& [id, r] : frfs) {
-    std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, "
-              << r.frequencies.size() << " lines, ISO 14839-3 zone " << zones[int(r.zone)] << "\n";
+    std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, " << r.frequencies.size()
+              << " lines, ISO 14839-3 zone " << zones[int(r.zone)] << "\n";
     for (const auto& p : r.peaks)
       std::cout << "  sensitivity peak " << p.output << ": " << p.magnitude << " at " << p.frequency << " Hz, zone "
                 << zones[int(p.zone)] << "\n";

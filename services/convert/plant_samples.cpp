@@ -29,8 +29,8 @@ std::string size_mismatch(const char* field, std::size_t got, std::size_t expect
 
 }  // namespace
 
-bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::Index count,
-                               const std::string& plant_id, std::uint64_t seq, double time_offset) {
+bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::Index count, const std::string& plant_id,
+                               std::uint64_t seq, double time_offset) {
   if (begin < 0 || count < 1 || begin + count > e.samples())
     throw Error("sample batch: rows " + std::to_string(begin) + "+" + std::to_string(count) + " outside the " +
                 std::to_string(e.samples()) + " samples");
@@ -75,12 +75,13 @@ std::string SampleWindow::check(const bus::PlantSamples& b) const {
 SampleWindow::Result SampleWindow::add(const bus::PlantSamples& b) {
   if (std::string reason = check(b); !reason.empty()) return {Outcome::rejected, reason};
   Result result{Outcome::added, {}};
-  const bool contiguous = started_ && b.seq == next_seq_ &&
-                          std::abs(b.t0 - next_t_) <= kSamplingTolerance * header_.sample_time;
+  const bool contiguous =
+      started_ && b.seq == next_seq_ && std::abs(b.t0 - next_t_) <= kSamplingTolerance * header_.sample_time;
   if (!contiguous) {
     if (started_ || b.seq != 0)
-      result = {Outcome::restarted, b.seq == 0 ? "a new record starts" : "batch " + std::to_string(b.seq) +
-                                                                             " does not follow the previous one"};
+      result = {Outcome::restarted, b.seq == 0
+                                        ? "a new record starts"
+                                        : "batch " + std::to_string(b.seq) + " does not follow the previous one"};
     clear();
     if (b.seq == 0) to_drop_ = settle_;
   }
@@ -97,7 +98,8 @@ SampleWindow::Result SampleWindow::add(const bus::PlantSamples& b) {
 }
 
 Experiment SampleWindow::take() {
-  if (!full()) throw Error("sample window: " + std::to_string(t_.size()) + " of " + std::to_string(samples_) + " samples");
+  if (!full())
+    throw Error("sample window: " + std::to_string(t_.size()) + " of " + std::to_string(samples_) + " samples");
   Experiment e = header_;
   e.t = Eigen::Map<const Eigen::VectorXd>(t_.data(), samples_);
   t_.erase(t_.begin(), t_.begin() + samples_);

@@ -18,8 +18,8 @@
 namespace ambid::convert {
 
 // Rows [begin, begin + count) of `e` as one message; times shifted by `time_offset`.
-bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::Index count,
-                               const std::string& plant_id, std::uint64_t seq, double time_offset);
+bus::PlantSamples sample_batch(const Experiment& e, Eigen::Index begin, Eigen::Index count, const std::string& plant_id,
+                               std::uint64_t seq, double time_offset);
 
 class SampleWindow {
  public:

@@ -19,7 +19,8 @@ nlohmann::json load_config(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw Error("config " + path + ": not JSON: " + e.what());
   }
-  if (!config.is_object()) throw Error("config " + path + ": expected a JSON object, got " + std::string(config.type_name()));
+  if (!config.is_object())
+    throw Error("config " + path + ": expected a JSON object, got " + std::string(config.type_name()));
   return config;
 }
 

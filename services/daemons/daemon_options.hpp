@@ -22,7 +22,7 @@ struct BusOptions {
 };
 
 struct DaemonOptions : BusOptions {
-  std::string config;  // JSON file; empty: defaults only
+  std::string config;    // JSON file; empty: defaults only
   int metrics_port = 0;  // Prometheus endpoint on 127.0.0.1; 0: none
 };
 

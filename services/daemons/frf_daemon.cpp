@@ -22,9 +22,9 @@ struct FrfConfig {
 };
 
 FrfConfig frf_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "frf config",
-                      {"scenario", "excitation", "amplitude", "f_min", "f_max", "interval",
-                       "restore_excitation", "restore_amplitude"});
+  reject_unknown_keys(
+      j, "frf config",
+      {"scenario", "excitation", "amplitude", "f_min", "f_max", "interval", "restore_excitation", "restore_amplitude"});
   FrfConfig c;
   if (const std::string file = config_value<std::string>(j, "scenario", ""); !file.empty())
     c.scenario = read_scenario_file(file);
@@ -86,8 +86,9 @@ int run_frf_daemon(const DaemonOptions& options) {
       config.restore.seq = ++seq;
       commands->write(config.restore);
       scheduled = config.interval > 0;
-      next_experiment = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                               std::chrono::duration<double>(config.interval));
+      next_experiment =
+          std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                 std::chrono::duration<double>(config.interval));
       try {
         responses->write(convert::to_message(ident::analyse_frf(e), options.plant_id, seq, e.t(e.samples() - 1)));
         runtime.metrics.published.Increment();

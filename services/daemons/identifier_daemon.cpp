@@ -48,9 +48,9 @@ int run_identifier_daemon(const DaemonOptions& options) {
   DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
   auto samples = bus->reader<bus::PlantSamples>();
   auto models = bus->writer<bus::IdentifiedModel>();
-  prometheus::Histogram& identification_seconds = runtime.metrics.histogram(
-      "ambid_identification_seconds", "wall time of one window's identification",
-      {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
+  prometheus::Histogram& identification_seconds =
+      runtime.metrics.histogram("ambid_identification_seconds", "wall time of one window's identification",
+                                {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
   prometheus::Counter& samples_in =
       runtime.metrics.counter("ambid_samples_received_total", "samples in the batches taken from the bus", {});
   // Samples that never reach an identification, by why: a refused batch, the partial window
@@ -58,7 +58,8 @@ int run_identifier_daemon(const DaemonOptions& options) {
   const std::string dropped_help = "samples that reached no identification";
   prometheus::Counter& dropped_rejected =
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "rejected"}});
-  prometheus::Counter& dropped_gap = runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "gap"}});
+  prometheus::Counter& dropped_gap =
+      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "gap"}});
   prometheus::Counter& dropped_record_end =
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "record_end"}});
   prometheus::Counter& dropped_unidentified =

@@ -22,7 +22,8 @@ using ident::window_identify_options;
 
 // Throws Error (InsufficientData for unexciting data) naming what the window lacks. Sigmas
 // the method does not report are 0.
-bus::IdentifiedModel identify_window(const Experiment& window, const std::string& plant_id, std::uint64_t seq,
-                                     const ident::IdentifyOptions& options = window_identify_options(kDefaultWindowMethod));
+bus::IdentifiedModel identify_window(
+    const Experiment& window, const std::string& plant_id, std::uint64_t seq,
+    const ident::IdentifyOptions& options = window_identify_options(kDefaultWindowMethod));
 
 }  // namespace ambid::daemons

@@ -20,7 +20,8 @@ std::unique_ptr<prometheus::Exposer> serve(int port, const std::shared_ptr<prome
 }  // namespace
 
 Metrics::Metrics(const std::string& role, int port)
-    : role_(role), exposer_(serve(port, registry_)),
+    : role_(role),
+      exposer_(serve(port, registry_)),
       received(counter("ambid_messages_received_total", "messages taken from the bus", {})),
       published(counter("ambid_messages_published_total", "messages written to the bus", {})),
       rejected(counter("ambid_messages_rejected_total", "malformed or refused input, failed computations", {})) {}

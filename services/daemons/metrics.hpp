@@ -21,8 +21,7 @@ class Metrics {
 
   prometheus::Histogram& histogram(const std::string& name, const std::string& help,
                                    const prometheus::Histogram::BucketBoundaries& buckets);
-  prometheus::Counter& counter(const std::string& name, const std::string& help,
-                               const prometheus::Labels& labels);
+  prometheus::Counter& counter(const std::string& name, const std::string& help, const prometheus::Labels& labels);
 
  private:
   std::string role_;

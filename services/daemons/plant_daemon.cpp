@@ -25,8 +25,9 @@ struct PlantConfig {
 };
 
 PlantConfig plant_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "plant config", {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency",
-                                      "rig_silence", "rig_reply_timeout", "rig_allow_remote"});
+  reject_unknown_keys(j, "plant config",
+                      {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency", "rig_silence",
+                       "rig_reply_timeout", "rig_allow_remote"});
   PlantConfig c;
   c.kind = convert::parse_source_kind(config_value<std::string>(j, "source", "sim"));
   c.target = config_value<std::string>(j, "target", "");
@@ -37,7 +38,8 @@ PlantConfig plant_config(const nlohmann::json& j) {
   c.rig.silence = config_value(j, "rig_silence", c.rig.silence);
   c.rig.reply_timeout = config_value(j, "rig_reply_timeout", c.rig.reply_timeout);
   c.rig.allow_remote = config_value(j, "rig_allow_remote", c.rig.allow_remote);
-  if (!(c.rig.silence > 0)) throw Error("plant config: rig_silence must be > 0 s, got " + std::to_string(c.rig.silence));
+  if (!(c.rig.silence > 0))
+    throw Error("plant config: rig_silence must be > 0 s, got " + std::to_string(c.rig.silence));
   if (!(c.rig.reply_timeout > 0))
     throw Error("plant config: rig_reply_timeout must be > 0 s, got " + std::to_string(c.rig.reply_timeout));
   if (c.target.empty()) throw Error("plant config: 'target' (the scenario or experiment file) is required");
@@ -63,8 +65,12 @@ std::string excitation_violation(const bus::ExcitationCommand& c, const PlantCon
 class PlantDaemon {
  public:
   PlantDaemon(const DaemonOptions& o, const PlantConfig& c)
-      : options_(o), config_(c), bus_(o.connect()), runtime_(*bus_, "plant", o.plant_id + "/plant", o.metrics_port),
-        samples_(bus_->writer<bus::PlantSamples>()), state_(bus_->writer<bus::PlantSourceState>()),
+      : options_(o),
+        config_(c),
+        bus_(o.connect()),
+        runtime_(*bus_, "plant", o.plant_id + "/plant", o.metrics_port),
+        samples_(bus_->writer<bus::PlantSamples>()),
+        state_(bus_->writer<bus::PlantSourceState>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
         source_(make_plant_source(c.kind, c.target, context())) {}
@@ -90,7 +96,8 @@ class PlantDaemon {
 
  private:
   SourceContext context() {
-    return {config_.batch_samples, config_.rig, &runtime_.metrics, [this](const std::string& line) { runtime_.log(line); }};
+    return {config_.batch_samples, config_.rig, &runtime_.metrics,
+            [this](const std::string& line) { runtime_.log(line); }};
   }
 
   void publish_batch() {
@@ -123,7 +130,8 @@ class PlantDaemon {
         pace_clock_ = clock_;
         announce(c.seq, true, "source swapped");
         // A new source ends the WARN of a silent rig.
-        runtime_.set_health(bus::AlertLevel::ok, "source " + std::string(convert::source_kind_name(c.kind)) + " " + c.target);
+        runtime_.set_health(bus::AlertLevel::ok,
+                            "source " + std::string(convert::source_kind_name(c.kind)) + " " + c.target);
       } catch (const Error& e) {
         runtime_.metrics.rejected.Increment();
         announce(c.seq, false, e.what());
@@ -136,8 +144,7 @@ class PlantDaemon {
       if (refusal.empty()) {
         try {
           const auto [lo, hi] = std::minmax_element(c.frequencies.begin(), c.frequencies.end());
-          source_->excite({c.kind, c.amplitude, c.frequencies.empty() ? 0.0 : *lo,
-                           c.frequencies.empty() ? 0.0 : *hi});
+          source_->excite({c.kind, c.amplitude, c.frequencies.empty() ? 0.0 : *lo, c.frequencies.empty() ? 0.0 : *hi});
         } catch (const Error& e) {
           refusal = e.what();
         }

@@ -10,7 +10,8 @@ namespace {
 
 class SimSource : public PlantSource {
  public:
-  explicit SimSource(const std::string& file) : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)) {}
+  explicit SimSource(const std::string& file)
+      : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)) {}
 
   std::optional<SourceRows> next_rows(std::chrono::milliseconds) override {
     sim::ScenarioOptions o = options_;

@@ -225,10 +225,9 @@ class RigSource : public PlantSource {
         std::size_t(b.nu) != status_.u_names.size() || std::size_t(b.nr) != status_.r_names.size() ||
         std::abs(b.sample_time - status_.sample_time) > 0.01 * status_.sample_time)
       return reject("mismatch", "a batch of model " + b.model + " with " + std::to_string(b.ny) + "/" +
-                                    std::to_string(b.nu) + "/" + std::to_string(b.nr) +
-                                    " channels and sample time " + std::to_string(b.sample_time) +
-                                    " s, the rig's status says " + status_.model + " with " +
-                                    std::to_string(status_.sample_time) + " s");
+                                    std::to_string(b.nu) + "/" + std::to_string(b.nr) + " channels and sample time " +
+                                    std::to_string(b.sample_time) + " s, the rig's status says " + status_.model +
+                                    " with " + std::to_string(status_.sample_time) + " s");
     // Downstream the times are rebuilt from the first one: a clock jump must start a new record.
     const bool clock_jumps = !(std::abs(b.t[0] - next_t_) <= 0.01 * status_.sample_time);
     if (break_ || b.record != record_ || b.first_index != next_index_ || clock_jumps) {

@@ -9,10 +9,10 @@ namespace ambid::daemons {
 
 sim::ScenarioOptions scenario_from_json(const nlohmann::json& j) {
   if (!j.is_object()) throw Error("scenario: expected a JSON object, got " + std::string(j.type_name()));
-  reject_unknown_keys(j, "scenario",
-                      {"name", "plant", "true_parameters", "controller", "excitation", "amplitude", "f_min", "f_max",
-                       "duration", "sample_time", "position_noise", "current_noise", "force_noise", "input_limit",
-                       "seed"});
+  reject_unknown_keys(
+      j, "scenario",
+      {"name", "plant", "true_parameters", "controller", "excitation", "amplitude", "f_min", "f_max", "duration",
+       "sample_time", "position_noise", "current_noise", "force_noise", "input_limit", "seed"});
   sim::ScenarioOptions o;
   o.name = config_value(j, "name", o.name);
   o.plant = config_value(j, "plant", o.plant);
@@ -31,7 +31,8 @@ sim::ScenarioOptions scenario_from_json(const nlohmann::json& j) {
   const nlohmann::json parameters = config_value(j, "true_parameters", nlohmann::json::object());
   if (!parameters.is_object()) throw Error("scenario key 'true_parameters': expected an object of NAME: VALUE");
   for (const auto& [name, value] : parameters.items()) {
-    if (!value.is_number()) throw Error("scenario true_parameters." + name + ": expected a number, got " + value.dump());
+    if (!value.is_number())
+      throw Error("scenario true_parameters." + name + ": expected a number, got " + value.dump());
     o.true_parameters[name] = value.get<double>();
   }
   sim::build_scenario(o);  // refuses unknown plants, parameters and bad values now, not mid-run

@@ -17,8 +17,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
 
   // A random suffix, so that two writers of the same file never share a temporary.
   std::random_device entropy;
-  const fs::path temporary =
-      path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(entropy()));
+  const fs::path temporary = path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(entropy()));
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     out.write(content.data(), static_cast<std::streamsize>(content.size()));
@@ -32,8 +31,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
   if (error) {
     std::error_code ignored;
     fs::remove(temporary, ignored);
-    throw Error("cannot rename " + temporary.string() + " to " + path.string() + ": " +
-                error.message());
+    throw Error("cannot rename " + temporary.string() + " to " + path.string() + ": " + error.message());
   }
 }
 

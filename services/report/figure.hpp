@@ -22,10 +22,10 @@ namespace ambid::report {
 enum class Marker { none, circle, square, cross };
 
 struct Style {
-  std::string color;         // any SVG colour ("#1f77b4", "red"); empty = next of the palette
-  bool line = true;          // join the points with a line
-  double line_width = 1.5;   // px
-  std::string dash;          // SVG stroke-dasharray, e.g. "6 3"; empty = solid
+  std::string color;        // any SVG colour ("#1f77b4", "red"); empty = next of the palette
+  bool line = true;         // join the points with a line
+  double line_width = 1.5;  // px
+  std::string dash;         // SVG stroke-dasharray, e.g. "6 3"; empty = solid
   Marker marker = Marker::none;
   double marker_size = 3.0;  // px (radius / half side)
 };
@@ -63,7 +63,7 @@ struct Axes {
   std::optional<Range> x_range;  // default: the data (rounded out to ticks / whole decades)
   std::optional<Range> y_range;
   double y_step = 0.0;  // linear y with a y_range: tick spacing (e.g. 90 for degrees); 0: automatic
-  bool legend = true;            // draw the legend box when some series has a label
+  bool legend = true;   // draw the legend box when some series has a label
 };
 
 struct Figure {
@@ -71,12 +71,11 @@ struct Figure {
   double width = 800.0;   // px
   double height = 600.0;  // px, shared by the stacked axes
   std::vector<Axes> axes;
-  bool share_x = false;   // one x range for all axes (the union), as for a Bode plot
+  bool share_x = false;  // one x range for all axes (the union), as for a Bode plot
 };
 
 // A series drawn as a line, or as markers only, in the next palette colour.
 Series line(std::string label, std::vector<double> x, std::vector<double> y);
-Series markers(std::string label, std::vector<double> x, std::vector<double> y,
-               Marker marker = Marker::circle);
+Series markers(std::string label, std::vector<double> x, std::vector<double> y, Marker marker = Marker::circle);
 
 }  // namespace ambid::report

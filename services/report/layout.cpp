@@ -31,8 +31,8 @@ void check_series(const Axes& axes, std::size_t index) {
   for (const Series& series : axes.series) {
     if (series.x.size() != series.y.size()) {
       std::ostringstream message;
-      message << "axes " << index << " series '" << series.label << "' has " << series.x.size()
-              << " x values but " << series.y.size() << " y values";
+      message << "axes " << index << " series '" << series.label << "' has " << series.x.size() << " x values but "
+              << series.y.size() << " y values";
       throw Error(message.str());
     }
   }
@@ -56,16 +56,14 @@ std::pair<Extent, Extent> data_extent(const Axes& axes) {
   return {x, y};
 }
 
-Ticks choose_ticks(const std::optional<Range>& fixed, const Extent& data, bool log,
-                   const char* axis_name, std::size_t index, double step = 0.0) {
+Ticks choose_ticks(const std::optional<Range>& fixed, const Extent& data, bool log, const char* axis_name,
+                   std::size_t index, double step = 0.0) {
   if (fixed && step > 0.0 && !log) return linear_ticks_with_step(fixed->lo, fixed->hi, step);
-  if (fixed) return log ? log_ticks_fixed(fixed->lo, fixed->hi)
-                        : linear_ticks_fixed(fixed->lo, fixed->hi);
+  if (fixed) return log ? log_ticks_fixed(fixed->lo, fixed->hi) : linear_ticks_fixed(fixed->lo, fixed->hi);
   if (data.empty()) {
     std::ostringstream message;
-    message << "axes " << index << " has no drawable point for its " << axis_name
-            << " axis (all values non-finite" << (log ? " or not positive" : "")
-            << ") and no explicit range";
+    message << "axes " << index << " has no drawable point for its " << axis_name << " axis (all values non-finite"
+            << (log ? " or not positive" : "") << ") and no explicit range";
     throw Error(message.str());
   }
   return log ? log_ticks(data.lo, data.hi) : linear_ticks(data.lo, data.hi);
@@ -98,22 +96,20 @@ std::vector<AxesLayout> layout_figure(const Figure& figure) {
     layout.left = metrics::margin_left;
     layout.width = figure.width - metrics::margin_left - metrics::margin_right;
     layout.top = slot_top + (axes.title.empty() ? metrics::gap_top : metrics::axes_title_height);
-    const double bottom_space =
-        metrics::tick_label_height + (axes.x_label.empty() ? 0.0 : metrics::axis_label_height);
+    const double bottom_space = metrics::tick_label_height + (axes.x_label.empty() ? 0.0 : metrics::axis_label_height);
     layout.height = slot_top + slot - bottom_space - layout.top;
     if (!(layout.height > metrics::minimum_plot_height)) {
       std::ostringstream message;
-      message << "figure height " << figure.height << " px leaves no room for "
-              << figure.axes.size() << " axes";
+      message << "figure height " << figure.height << " px leaves no room for " << figure.axes.size() << " axes";
       throw Error(message.str());
     }
     const Extent& x_data = figure.share_x ? shared_x : extents[i].first;
     layout.x_ticks = choose_ticks(axes.x_range, x_data, axes.log_x, "x", i);
     layout.y_ticks = choose_ticks(axes.y_range, extents[i].second, axes.log_y, "y", i, axes.y_step);
-    layout.x_scale = Scale(layout.x_ticks.range.lo, layout.x_ticks.range.hi, layout.left,
-                           layout.left + layout.width, axes.log_x);
-    layout.y_scale = Scale(layout.y_ticks.range.lo, layout.y_ticks.range.hi,
-                           layout.top + layout.height, layout.top, axes.log_y);
+    layout.x_scale =
+        Scale(layout.x_ticks.range.lo, layout.x_ticks.range.hi, layout.left, layout.left + layout.width, axes.log_x);
+    layout.y_scale =
+        Scale(layout.y_ticks.range.lo, layout.y_ticks.range.hi, layout.top + layout.height, layout.top, axes.log_y);
     layouts.push_back(layout);
   }
   return layouts;

@@ -20,9 +20,7 @@ Scale::Scale(double lo, double hi, double pixel_lo, double pixel_hi, bool log)
   }
 }
 
-bool Scale::drawable(double value) const {
-  return std::isfinite(value) && (!log_ || value > 0.0);
-}
+bool Scale::drawable(double value) const { return std::isfinite(value) && (!log_ || value > 0.0); }
 
 double Scale::to_pixel(double value) const {
   const double v = log_ ? std::log10(value) : value;

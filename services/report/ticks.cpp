@@ -124,9 +124,7 @@ Ticks log_ticks_fixed(double lo, double hi) {
   const int last = static_cast<int>(std::ceil(std::log10(hi) - tolerance));
   // Label every decade, or every n-th one when there are many.
   const int decade_step = std::max(1, (last - first + 9) / 10);
-  const auto inside = [&](double value) {
-    return value >= lo * (1.0 - tolerance) && value <= hi * (1.0 + tolerance);
-  };
+  const auto inside = [&](double value) { return value >= lo * (1.0 - tolerance) && value <= hi * (1.0 + tolerance); };
   for (int exponent = first; exponent <= last; ++exponent) {
     const double decade = std::pow(10.0, exponent);
     if (inside(decade) && exponent % decade_step == 0) {

@@ -9,9 +9,9 @@
 namespace ambid::report {
 
 struct Ticks {
-  Range range;                 // the axis extent, rounded out so that it begins and ends on ticks
-  std::vector<double> major;   // labelled
-  std::vector<double> minor;   // grid only (log axes)
+  Range range;                      // the axis extent, rounded out so that it begins and ends on ticks
+  std::vector<double> major;        // labelled
+  std::vector<double> minor;        // grid only (log axes)
   std::vector<std::string> labels;  // one per major tick
 };
 

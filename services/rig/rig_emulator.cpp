@@ -205,7 +205,8 @@ void validate(const EmulatorOptions& o) {
   sim::build_scenario(o.scenario);
   if (o.fault) sim::build_scenario(*o.fault);
   if (o.fault && o.fault->plant != o.scenario.plant)  // the channels of one board do not change
-    throw Error("rig emulator: the fault scenario's plant " + o.fault->plant + " is not the board's " + o.scenario.plant);
+    throw Error("rig emulator: the fault scenario's plant " + o.fault->plant + " is not the board's " +
+                o.scenario.plant);
 }
 
 void run_emulator(const EmulatorOptions& options, const std::function<bool()>& running,

@@ -14,9 +14,9 @@
 namespace ambid {
 namespace {
 
+using nlohmann::json;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using nlohmann::json;
 namespace fs = std::filesystem;
 
 json good_sidecar() {
@@ -141,13 +141,15 @@ TEST_F(ReadExperiment, ExtraColumnsAreIgnoredWithAWarningNamingThem) {
   write_pair(good_sidecar(), csv.substr(0, csv.find('\n') + 1) + rows);
   const ReadResult result = read();
   ASSERT_EQ(result.warnings.size(), 1u);
-  EXPECT_THAT(result.warnings[0],
-              AllOf(HasSubstr(csv_file()), HasSubstr("columns 'temp', 'status' are not named in the sidecar; ignored")));
+  EXPECT_THAT(result.warnings[0], AllOf(HasSubstr(csv_file()),
+                                        HasSubstr("columns 'temp', 'status' are not named in the sidecar; ignored")));
   EXPECT_EQ(result.experiment.y(2, 1), 2.0);
 }
 
 TEST_F(ReadExperiment, ToleratesCrLfWhitespaceByteOrderMarkPlusSignAndFinalBlankLines) {
-  std::string csv = "\xEF\xBB\xBF" "t, x ,i1,i2,u1,u2,r1,r2\r\n";
+  std::string csv =
+      "\xEF\xBB\xBF"
+      "t, x ,i1,i2,u1,u2,r1,r2\r\n";
   for (int k = 0; k < 3; ++k) csv += std::to_string(k * 1e-3) + ", +1e-6 ,\t2,0.5,8.75,8.75,0.1,-0.1\r\n";
   write_pair(good_sidecar(), csv + "\r\n\n");
   const Experiment e = read().experiment;
@@ -164,8 +166,7 @@ TEST_F(ReadExperiment, SamplingWithinOnePercentIsAccepted) {
 
 TEST_F(ReadExperiment, MissingCsvFileIsNamed) {
   write("run.json", good_sidecar().dump());
-  EXPECT_THAT(refusal(), AllOf(HasSubstr("cannot open " + (dir_ / "run.csv").string()),
-                               HasSubstr("No such file")));
+  EXPECT_THAT(refusal(), AllOf(HasSubstr("cannot open " + (dir_ / "run.csv").string()), HasSubstr("No such file")));
 }
 
 TEST_F(ReadExperiment, EmptyCsvIsRefused) {
@@ -215,8 +216,10 @@ TEST_F(ReadExperiment, InfinityIsRefusedInAnyCaseAndSign) {
 TEST_F(ReadExperiment, UnparsableTextIsRefusedWithLineAndColumn) {
   for (const char* text : {"abc", "1 000", "1.5V", "0x10", "1e400"}) {
     write_pair(good_sidecar(), with_cell(good_csv(), 5, 1, text));
-    EXPECT_THAT(refusal(), HasSubstr(csv_file() + "line 5, column 'x': expected a finite number ('.' decimal point, "
-                                                  "no thousands separators), got '" + text + "'"));
+    EXPECT_THAT(refusal(), HasSubstr(csv_file() +
+                                     "line 5, column 'x': expected a finite number ('.' decimal point, "
+                                     "no thousands separators), got '" +
+                                     text + "'"));
   }
 }
 
@@ -298,8 +301,7 @@ TEST_F(ReadExperiment, ResampleLeavesUniformDataUntouched) {
 
 TEST_F(ReadExperiment, ResampleRefusesDataShorterThanOneStep) {
   write_pair(good_sidecar(), "t,x,i1,i2,u1,u2,r1,r2\n0,0,0,0,0,0,0,0\n0.0005,0,0,0,0,0,0,0\n");
-  EXPECT_THAT(refusal({.resample = true}),
-              HasSubstr(csv_file() + "spans 5e-4 s, less than one sample_time 0.001 s"));
+  EXPECT_THAT(refusal({.resample = true}), HasSubstr(csv_file() + "spans 5e-4 s, less than one sample_time 0.001 s"));
 }
 
 TEST_F(ReadExperiment, ResampleRefusesToInventMostOfTheData) {
@@ -319,7 +321,8 @@ TEST_F(ReadExperiment, MissingSidecarIsNamed) {
 TEST_F(ReadExperiment, MalformedJsonNamesFileAndPosition) {
   write("run.json", "{\n  \"format\": \"ambid-experiment/1\",\n  'name': \"quoted wrongly\"\n}\n");
   write("run.csv", good_csv());
-  EXPECT_THAT(refusal(), AllOf(HasSubstr(json_file() + "malformed JSON: "), HasSubstr("parse error at line 3, column")));
+  EXPECT_THAT(refusal(),
+              AllOf(HasSubstr(json_file() + "malformed JSON: "), HasSubstr("parse error at line 3, column")));
 }
 
 TEST_F(ReadExperiment, KeyRepeatedInAnObjectIsRefused) {
@@ -341,7 +344,8 @@ TEST_F(ReadExperiment, FormatMustBeVersionOne) {
   json sidecar = good_sidecar();
   sidecar["format"] = "ambid-experiment/2";
   write_pair(sidecar, good_csv());
-  EXPECT_THAT(refusal(), HasSubstr(json_file() + "key `format` must be \"ambid-experiment/1\", got 'ambid-experiment/2'"));
+  EXPECT_THAT(refusal(),
+              HasSubstr(json_file() + "key `format` must be \"ambid-experiment/1\", got 'ambid-experiment/2'"));
 }
 
 // A missing required key is an error naming its path.
@@ -358,11 +362,10 @@ TEST_P(MissingKey, IsNamed) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Sidecar, MissingKey,
-                         ::testing::Values("format", "name", "sample_time", "plant", "plant.model",
-                                           "plant.parameters", "signals", "signals.y", "signals.u",
-                                           "operating_point", "controller.kind", "controller.sample_time",
-                                           "controller.inputs", "controller.outputs", "controller.A",
-                                           "controller.B", "controller.C", "controller.D"));
+                         ::testing::Values("format", "name", "sample_time", "plant", "plant.model", "plant.parameters",
+                                           "signals", "signals.y", "signals.u", "operating_point", "controller.kind",
+                                           "controller.sample_time", "controller.inputs", "controller.outputs",
+                                           "controller.A", "controller.B", "controller.C", "controller.D"));
 
 // A value of the wrong JSON type is an error naming the key and the expected type.
 struct WrongType {
@@ -392,7 +395,8 @@ INSTANTIATE_TEST_SUITE_P(
         WrongType{"/signals/r", "null", "key `signals.r` must be an array of signal names, got null"},
         WrongType{"/operating_point/x", "true", "key `operating_point.x` must be a number, got boolean 'true'"},
         WrongType{"/controller", "\"pid\"", "key `controller` must be an object, got string"},
-        WrongType{"/controller/A", "0.5", "key `controller.A` must be an array of rows (arrays of numbers), got number"},
+        WrongType{"/controller/A", "0.5",
+                  "key `controller.A` must be an array of rows (arrays of numbers), got number"},
         WrongType{"/controller/C/1", "2", "key `controller.C[1]` must be an array of numbers, got number"},
         WrongType{"/controller/D/0/1", "\"0\"", "key `controller.D[0][1]` must be a number, got string"},
         WrongType{"/controller/initial_state", "{}", "key `controller.initial_state` must be an array of numbers"}));

@@ -180,7 +180,8 @@ TEST(Experiment, ValidateRefusesNonFiniteParameter) {
 TEST(Experiment, ValidateRefusesNonPositiveSampleTime) {
   Experiment e = example_experiment();
   e.sample_time = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THAT(error_of([&] { e.validate(); }), HasSubstr("sample_time must be a positive finite number of seconds, got nan"));
+  EXPECT_THAT(error_of([&] { e.validate(); }),
+              HasSubstr("sample_time must be a positive finite number of seconds, got nan"));
 }
 
 TEST(Experiment, ValidateRefusesExtraThatShadowsADefinedKey) {
@@ -194,7 +195,9 @@ TEST(Experiment, ValidateRefusesExtraThatShadowsADefinedKey) {
 TEST(StateSpaceController, ValidateNamesTheMatrixAndItsExpectedShape) {
   StateSpaceController c = example_controller();
   c.B = Eigen::MatrixXd::Zero(4, 3);
-  EXPECT_THAT(error_of([&] { c.validate({"u1", "u2"}); }),
+  EXPECT_THAT(error_of([&] {
+                c.validate({"u1", "u2"});
+              }),
               HasSubstr("controller.B must be 4x5 (states x inputs), got 4x3"));
 }
 
@@ -210,7 +213,9 @@ TEST(StateSpaceController, ValidateRefusesAnAlgebraicLoopThroughD) {
 TEST(StateSpaceController, ValidateRefusesAnOutputThatIsNoPlantInput) {
   StateSpaceController c = example_controller();
   c.outputs = {"u1", "x"};
-  EXPECT_THAT(error_of([&] { c.validate({"u1", "u2"}); }),
+  EXPECT_THAT(error_of([&] {
+                c.validate({"u1", "u2"});
+              }),
               HasSubstr("controller.outputs names 'x', which is not a u signal (signals.u: u1, u2)"));
 }
 
@@ -230,8 +235,9 @@ TEST_F(ExperimentFiles, RoundTripIsBitIdentical) {
 
 TEST_F(ExperimentFiles, RoundTripOfAwkwardDoubles) {
   Experiment e = example_experiment();
-  const double awkward[] = {-0.0, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, 0.1 + 0.2,
-                            1.0 / 3.0, -123456789.123456789, 1e21, 1e-7};
+  const double awkward[] = {-0.0,      5e-324,    2.2250738585072014e-308, 1.7976931348623157e308,
+                            0.1 + 0.2, 1.0 / 3.0, -123456789.123456789,    1e21,
+                            1e-7};
   for (std::size_t i = 0; i < std::size(awkward); ++i) e.y(static_cast<Eigen::Index>(i), 0) = awkward[i];
   e.plant.parameters["tiny"] = 5e-324;
   e.controller->A(3, 3) = 0.1 + 0.2;

@@ -178,7 +178,9 @@ TEST(Linalg, NonSquareInputThrowsWithItsDimensions) {
       EXPECT_NE(std::string(e.what()).find("3x2"), std::string::npos) << e.what();
     }
   }
-  EXPECT_THROW(linalg::lu_solve(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)), Eigen::MatrixXd(Eigen::MatrixXd::Ones(3, 1))), Error);
+  EXPECT_THROW(
+      linalg::lu_solve(Eigen::MatrixXd(Eigen::MatrixXd::Identity(2, 2)), Eigen::MatrixXd(Eigen::MatrixXd::Ones(3, 1))),
+      Error);
 }
 
 }  // namespace

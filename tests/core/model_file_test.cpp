@@ -15,9 +15,9 @@
 namespace ambid {
 namespace {
 
+using nlohmann::json;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
-using nlohmann::json;
 namespace fs = std::filesystem;
 
 // A model with awkward doubles (non-terminating binary fractions, tiny and huge magnitudes).

@@ -36,8 +36,8 @@ TEST(StateSpace, UnstableDoubleIntegratorRoundTrip) {
 }
 
 TEST(StateSpace, LogarithmRefusedOnNegativeRealAxis) {
-  DiscreteSystem d{Eigen::MatrixXd::Constant(1, 1, -0.5), Eigen::MatrixXd::Ones(1, 1),
-                   Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Zero(1, 1), 0.01};
+  DiscreteSystem d{Eigen::MatrixXd::Constant(1, 1, -0.5), Eigen::MatrixXd::Ones(1, 1), Eigen::MatrixXd::Ones(1, 1),
+                   Eigen::MatrixXd::Zero(1, 1), 0.01};
   try {
     d2c_zoh(d);
     FAIL() << "expected an error";
@@ -48,18 +48,18 @@ TEST(StateSpace, LogarithmRefusedOnNegativeRealAxis) {
 }
 
 TEST(StateSpace, DimensionMismatchNamed) {
-  ContinuousSystem sys{Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(3, 1),
-                       Eigen::MatrixXd::Zero(1, 2), Eigen::MatrixXd::Zero(1, 1)};
+  ContinuousSystem sys{Eigen::MatrixXd::Zero(2, 2), Eigen::MatrixXd::Zero(3, 1), Eigen::MatrixXd::Zero(1, 2),
+                       Eigen::MatrixXd::Zero(1, 1)};
   EXPECT_THROW(c2d_zoh(sys, 0.1), Error);
-  ContinuousSystem ok{Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Zero(1, 1),
-                      Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Zero(1, 1)};
+  ContinuousSystem ok{Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Zero(1, 1),
+                      Eigen::MatrixXd::Zero(1, 1)};
   EXPECT_THROW(c2d_zoh(ok, -1.0), Error);
   EXPECT_THROW(c2d_zoh(ok, std::nan("")), Error);
 }
 
 TEST(StateSpace, SimulateImpulseGivesMarkovParameters) {
-  DiscreteSystem d{Eigen::MatrixXd(2, 2), Eigen::MatrixXd(2, 1), Eigen::MatrixXd(1, 2),
-                   Eigen::MatrixXd::Zero(1, 1), 0.1};
+  DiscreteSystem d{Eigen::MatrixXd(2, 2), Eigen::MatrixXd(2, 1), Eigen::MatrixXd(1, 2), Eigen::MatrixXd::Zero(1, 1),
+                   0.1};
   d.A << 0.5, 0.2, -0.1, 0.9;
   d.B << 1.0, 0.5;
   d.C << 1.0, -1.0;

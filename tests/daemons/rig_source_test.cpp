@@ -53,8 +53,7 @@ class ScriptedBoard {
 
   // `count` samples of record `record` from `first`: t = first ms + t_offset, y = (k, -k, 10k...),
   // u = 2k, r = 3k.
-  void batch(std::uint32_t record, std::uint64_t first, std::size_t count, std::uint8_t ny = 2,
-             double t_offset = 0.0) {
+  void batch(std::uint32_t record, std::uint64_t first, std::size_t count, std::uint8_t ny = 2, double t_offset = 0.0) {
     rig::SampleBatch b;
     b.record = record;
     b.first_index = first;

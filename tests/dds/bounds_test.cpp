@@ -24,12 +24,10 @@ TEST_P(Bounds, OversizedStringIsRefusedBeforeWrite) {
     writer->write(oversized);
     FAIL() << "an oversized plant_id was written";
   } catch (const InvalidMessage& e) {
-    EXPECT_THAT(e.what(), testing::StartsWith(
-                              "Alert.plant_id is 65 characters, more than its bound of 64"));
+    EXPECT_THAT(e.what(), testing::StartsWith("Alert.plant_id is 65 characters, more than its bound of 64"));
   }
   writer->write(small<Alert>(2));
-  EXPECT_TRUE(same_messages(collect(*reader, 2, std::chrono::milliseconds(1500)),
-                            {small<Alert>(2)}));
+  EXPECT_TRUE(same_messages(collect(*reader, 2, std::chrono::milliseconds(1500)), {small<Alert>(2)}));
 }
 
 TEST_P(Bounds, OversizedSequenceIsRefusedBeforeWrite) {
@@ -45,13 +43,11 @@ TEST_P(Bounds, OversizedSequenceIsRefusedBeforeWrite) {
   oversized.y.resize(oversized.y.size() + limits::max_channels, 0.0);
   EXPECT_THROW(writer->write(oversized), InvalidMessage);
   writer->write(small<PlantSamples>(1));
-  EXPECT_TRUE(same_messages(collect(*reader, 2, std::chrono::milliseconds(1500)),
-                            {small<PlantSamples>(1)}));
+  EXPECT_TRUE(same_messages(collect(*reader, 2, std::chrono::milliseconds(1500)), {small<PlantSamples>(1)}));
 }
 
 INSTANTIATE_TEST_SUITE_P(Dds, Bounds,
-                         testing::Values(VendorPair{"fastdds", "cyclone"},
-                                         VendorPair{"cyclone", "fastdds"}),
+                         testing::Values(VendorPair{"fastdds", "cyclone"}, VendorPair{"cyclone", "fastdds"}),
                          pair_name);
 
 }  // namespace

@@ -25,8 +25,7 @@ bool eventually(const std::function<bool()>& done, std::chrono::milliseconds lim
 
 // What the reader receives until it has n samples or `limit` passes.
 template <class Message>
-std::vector<Message> collect(Reader<Message>& reader, std::size_t n,
-                             std::chrono::milliseconds limit = patience) {
+std::vector<Message> collect(Reader<Message>& reader, std::size_t n, std::chrono::milliseconds limit = patience) {
   std::vector<Message> got;
   eventually(
       [&] {
@@ -46,8 +45,8 @@ bool same_messages(const std::vector<Message>& got, const std::vector<Message>& 
 bool matched(const Endpoint& a, const Endpoint& b);
 
 // Every message type on the bus.
-using AllMessages = std::tuple<PlantSamples, ExcitationCommand, PlantSourceCommand,
-                               PlantSourceState, IdentifiedModel, FrequencyResponse, Alert, Health>;
+using AllMessages = std::tuple<PlantSamples, ExcitationCommand, PlantSourceCommand, PlantSourceState, IdentifiedModel,
+                               FrequencyResponse, Alert, Health>;
 
 // One writer or one reader per message type of a tuple.
 template <template <class> class Kind, class Messages>
@@ -62,9 +61,7 @@ class EndpointSet<Kind, std::tuple<Messages...>> {
   Kind<Message>& get() {
     return *std::get<std::unique_ptr<Kind<Message>>>(endpoints_);
   }
-  bool all_matched() const {
-    return ((std::get<std::unique_ptr<Kind<Messages>>>(endpoints_)->matched() > 0) && ...);
-  }
+  bool all_matched() const { return ((std::get<std::unique_ptr<Kind<Messages>>>(endpoints_)->matched() > 0) && ...); }
 
  private:
   template <class Message>

@@ -39,8 +39,7 @@ void expect_each(AllReaders& readers, std::tuple<Messages...>*) {
         }
         EXPECT_TRUE(same_messages(got, want))
             << Topic<Messages>::name << ": received " << got.size() << " of " << want.size()
-            << " messages; not received intact: sent message" << missing
-            << " (0: small(1), 1: largest(), 2: small(2))";
+            << " messages; not received intact: sent message" << missing << " (0: small(1), 1: largest(), 2: small(2))";
       }(),
       ...);
 }
@@ -57,9 +56,7 @@ std::string pair_name(const testing::TestParamInfo<VendorPair>& info) {
   return std::string(info.param.writer) + "_to_" + info.param.reader;
 }
 
-void PrintTo(const VendorPair& pair, std::ostream* out) {
-  *out << pair.writer << " -> " << pair.reader;
-}
+void PrintTo(const VendorPair& pair, std::ostream* out) { *out << pair.writer << " -> " << pair.reader; }
 
 int pair_index(const VendorPair& pair) {
   const auto* it = std::find_if(std::begin(vendor_pairs), std::end(vendor_pairs), [&](auto& p) {

@@ -44,8 +44,7 @@ TEST_P(Liveliness, KilledWriterIsReportedLost) {
   const auto health = bus->reader<Health>();
   EventLog samples_log(*samples);
   EventLog health_log(*health);
-  PeerProcess peer("LivelinessPeer.WritesUntilKilled",
-                   std::string(GetParam().writer) + " " + std::to_string(domain));
+  PeerProcess peer("LivelinessPeer.WritesUntilKilled", std::string(GetParam().writer) + " " + std::to_string(domain));
   ASSERT_TRUE(peer.wait_ready(patience)) << "peer never got ready";
   ASSERT_EQ(collect(*samples, 1).size(), 1u);
   ASSERT_EQ(collect(*health, 1).size(), 1u);
@@ -58,10 +57,10 @@ TEST_P(Liveliness, KilledWriterIsReportedLost) {
   const auto limit = qos(Profile::health).liveliness + std::chrono::seconds(3);
   EXPECT_TRUE(eventually([&] { return samples_log.saw(StatusKind::liveliness_lost); }, limit));
   EXPECT_TRUE(eventually([&] { return health_log.saw(StatusKind::liveliness_lost); }, limit));
-  RecordProperty("lost_after_ms",
-                 static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                      std::chrono::steady_clock::now() - killed)
-                                      .count()));
+  RecordProperty(
+      "lost_after_ms",
+      static_cast<int>(
+          std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - killed).count()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Dds, Liveliness, testing::ValuesIn(vendor_pairs), pair_name);

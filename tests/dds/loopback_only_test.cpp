@@ -25,8 +25,7 @@ void exchange_both_ways(Bus& fast, Bus& cyclone) {
   }
 }
 
-void expect_nothing_left_loopback(int domain, const std::string& fast_profile,
-                                  const std::string& cyclone_profile) {
+void expect_nothing_left_loopback(int domain, const std::string& fast_profile, const std::string& cyclone_profile) {
   ambid::test::PacketCapture capture(domain);
   if (!capture.available()) GTEST_SKIP() << "no packet socket (needs CAP_NET_RAW)";
   {
@@ -40,8 +39,7 @@ void expect_nothing_left_loopback(int domain, const std::string& fast_profile,
   EXPECT_EQ(capture.dropped(), 0u) << "the capture dropped packets: the result is incomplete";
   EXPECT_EQ(capture.multicast(), 0);
   EXPECT_TRUE(capture.elsewhere().empty())
-      << capture.elsewhere().size() << " packets left loopback, first: "
-      << capture.elsewhere().front();
+      << capture.elsewhere().size() << " packets left loopback, first: " << capture.elsewhere().front();
 }
 
 TEST(LoopbackOnly, BuiltInProfilesSendNothingElsewhere) {

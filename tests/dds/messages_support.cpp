@@ -185,9 +185,8 @@ FrequencyResponse largest<FrequencyResponse>() {
           .frequencies = ramp(limits::max_frequencies, 0.5),
           .re = ramp(limits::max_response_values, 0.0),
           .im = ramp(limits::max_response_values, -100.0),
-          .peaks = std::vector<SensitivityPeak>(
-              limits::max_peaks, {text_of_length(limits::name_length, 'q'), 210.0, 3.5,
-                                  IsoZone::b}),
+          .peaks = std::vector<SensitivityPeak>(limits::max_peaks,
+                                                {text_of_length(limits::name_length, 'q'), 210.0, 3.5, IsoZone::b}),
           .zone = IsoZone::d};
 }
 

@@ -27,7 +27,8 @@ namespace ambid::test {
 class PacketCapture {
  public:
   explicit PacketCapture(int domain)
-      : first_port_(7400 + 250 * domain), last_port_(first_port_ + 249),
+      : first_port_(7400 + 250 * domain),
+        last_port_(first_port_ + 249),
         loopback_index_(static_cast<int>(if_nametoindex("lo"))) {
     fd_ = socket(AF_PACKET, SOCK_DGRAM, htons(ETH_P_ALL));
     if (fd_ < 0) return;
@@ -94,8 +95,8 @@ class PacketCapture {
     }
     std::ostringstream what;
     what << "interface " << from.sll_ifindex << ", protocol 0x" << std::hex << protocol
-         << (multicast ? ", multicast" : "") << ", ports " << std::dec << source << " -> " << destination << ", "
-         << n << " bytes";
+         << (multicast ? ", multicast" : "") << ", ports " << std::dec << source << " -> " << destination << ", " << n
+         << " bytes";
     const std::lock_guard lock(mutex_);
     elsewhere_.push_back(what.str());
   }

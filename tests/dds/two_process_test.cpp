@@ -29,8 +29,7 @@ class TwoProcess : public testing::TestWithParam<VendorPair> {};
 
 TEST_P(TwoProcess, EveryTopicArrivesIntact) {
   const int domain = 110 + pair_index(GetParam());
-  PeerProcess peer("TwoProcessPeer.ReadsEveryTopic",
-                   std::string(GetParam().reader) + " " + std::to_string(domain));
+  PeerProcess peer("TwoProcessPeer.ReadsEveryTopic", std::string(GetParam().reader) + " " + std::to_string(domain));
   const auto bus = make_bus(GetParam().writer, domain);
   AllWriters writers(*bus);
   ASSERT_TRUE(eventually([&] { return writers.all_matched(); })) << "writers did not match";

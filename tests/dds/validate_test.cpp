@@ -31,15 +31,13 @@ void expect_largest_and_small_valid(std::tuple<Messages...>*) {
       ...);
 }
 
-TEST(Validate, MessagesAtTheirBoundsPass) {
-  expect_largest_and_small_valid(static_cast<AllMessages*>(nullptr));
-}
+TEST(Validate, MessagesAtTheirBoundsPass) { expect_largest_and_small_valid(static_cast<AllMessages*>(nullptr)); }
 
 TEST(Validate, StringOneOverItsBoundIsRefusedWithNameSizeBoundAndValue) {
   Alert a = small<Alert>(1);
   a.message = std::string(limits::text_length + 1, 'x');
-  EXPECT_EQ(refusal(a), "Alert.message is 257 characters, more than its bound of 256 (\"" +
-                            std::string(40, 'x') + "...\")");
+  EXPECT_EQ(refusal(a),
+            "Alert.message is 257 characters, more than its bound of 256 (\"" + std::string(40, 'x') + "...\")");
   a = small<Alert>(1);
   a.fault = text_of_length(limits::name_length + 1);
   EXPECT_THAT(refusal(a), HasSubstr("Alert.fault is 33 characters"));

@@ -32,7 +32,8 @@ Experiment stepped_record(const sim::Effect& effect, std::vector<double> levels,
   const Eigen::Index part = s.options.samples / Eigen::Index(levels.size());
   for (std::size_t p = 0; p < levels.size(); ++p)
     s.options.excitation.middleRows(Eigen::Index(p) * part,
-                                    p + 1 == levels.size() ? s.options.samples - Eigen::Index(p) * part : part) *= levels[p];
+                                    p + 1 == levels.size() ? s.options.samples - Eigen::Index(p) * part : part) *=
+        levels[p];
   return sim::run_closed_loop(*s.truth, s.header, s.options);
 }
 
@@ -49,11 +50,14 @@ Experiment offset_record(const sim::Effect& effect, std::vector<double> offsets,
   sim::Scenario s = sim::build_scenario(o);
   const Eigen::Index part = s.options.samples / Eigen::Index(offsets.size());
   for (Eigen::Index k = 0; k < s.options.samples; ++k)
-    s.options.excitation.row(k).array() += offsets[std::size_t(std::min<Eigen::Index>(k / part, Eigen::Index(offsets.size()) - 1))];
+    s.options.excitation.row(k).array() +=
+        offsets[std::size_t(std::min<Eigen::Index>(k / part, Eigen::Index(offsets.size()) - 1))];
   return sim::run_closed_loop(*s.truth, s.header, s.options);
 }
 
-AmplitudeDependence dependence_of(const Experiment& e) { return amplitude_dependence(e, replay_loop(e, {}, e.samples())); }
+AmplitudeDependence dependence_of(const Experiment& e) {
+  return amplitude_dependence(e, replay_loop(e, {}, e.samples()));
+}
 
 TEST(AuditAmplitude, ALinearEffectHasTheSameErrorAtEveryAmplitude) {
   for (std::uint64_t seed : {4u, 5u}) {
@@ -101,7 +105,8 @@ TEST(AuditAmplitude, SaturationDependsOnTheLevelLinearCoilEffectsDoNot) {
 }
 
 TEST(AuditAmplitude, OneLevelCannotTell) {
-  const AmplitudeDependence a = dependence_of(stepped_record(sim::make_effect("magnetic_saturation", {{"beta", 0.4}}), {0.3}, 5));
+  const AmplitudeDependence a =
+      dependence_of(stepped_record(sim::make_effect("magnetic_saturation", {{"beta", 0.4}}), {0.3}, 5));
   EXPECT_FALSE(a.determinable);
   EXPECT_FALSE(a.dependent);
   EXPECT_NE(a.reason.find("hardly varies"), std::string::npos) << a.reason;
@@ -109,7 +114,8 @@ TEST(AuditAmplitude, OneLevelCannotTell) {
 }
 
 TEST(AuditAmplitude, ShortRecordsAreNotDeterminable) {
-  const AmplitudeDependence a = dependence_of(stepped_record(sim::make_effect("sensor_gain", {{"dgain", 0.1}}), {0.3, 3.0}, 6));
+  const AmplitudeDependence a =
+      dependence_of(stepped_record(sim::make_effect("sensor_gain", {{"dgain", 0.1}}), {0.3, 3.0}, 6));
   EXPECT_TRUE(a.determinable);
   sim::ScenarioOptions o;
   o.duration = 0.5;

@@ -47,7 +47,8 @@ TEST(AuditSignificance, UnderTheNullZIsStandardNormal) {
   double sum = 0.0, sum2 = 0.0;
   int above = 0;
   for (int s = 0; s < kSeeds; ++s) {
-    const ImprovementTest t = improvement_test(nominal + coloured_noise(std::uint64_t(s) + 1, 1.0), nominal, extended, all, 100);
+    const ImprovementTest t =
+        improvement_test(nominal + coloured_noise(std::uint64_t(s) + 1, 1.0), nominal, extended, all, 100);
     sum += t.z;
     sum2 += t.z * t.z;
     above += t.z > acceptance_threshold(0.05, 1) ? 1 : 0;

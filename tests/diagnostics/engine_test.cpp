@@ -55,7 +55,8 @@ TEST_P(StepTest, RaisesErrorNamingOnlyThatFault) {
     EXPECT_EQ(a.plant_id, "bearing-A");
     EXPECT_DOUBLE_EQ(a.time, static_cast<double>(kChangeAt));
     ASSERT_TRUE(a.baseline);
-    EXPECT_NEAR(*a.baseline, testing::nominal(c.parameter), 3 * sigma / std::sqrt(50.0) * testing::nominal(c.parameter));
+    EXPECT_NEAR(*a.baseline, testing::nominal(c.parameter),
+                3 * sigma / std::sqrt(50.0) * testing::nominal(c.parameter));
     EXPECT_NEAR(a.value / *a.baseline, 1.2, 3 * sigma);
     EXPECT_EQ(engine.level("bearing-A", c.parameter), Level::error);
     // Stored with the history.
@@ -66,9 +67,8 @@ TEST_P(StepTest, RaisesErrorNamingOnlyThatFault) {
 
 INSTANTIATE_TEST_SUITE_P(Parameters, StepTest,
                          ::testing::Values(StepCase{"R1", "coil_resistance", 1}, StepCase{"R2", "coil_resistance", 2},
-                                           StepCase{"kw1", "amplifier_gain", 1},
-                                           StepCase{"kw2", "amplifier_gain", 2}, StepCase{"kr1", "force_factor", 1},
-                                           StepCase{"kr2", "force_factor", 2}),
+                                           StepCase{"kw1", "amplifier_gain", 1}, StepCase{"kw2", "amplifier_gain", 2},
+                                           StepCase{"kr1", "force_factor", 1}, StepCase{"kr2", "force_factor", 2}),
                          [](const ::testing::TestParamInfo<StepCase>& p) { return p.param.parameter; });
 
 TEST(DiagnosticsEngine, MessageOfAStep) {
@@ -185,7 +185,9 @@ TEST(DiagnosticsEngine, BothCoilsWarmingIsOneCoilResistanceFaultWithoutChannel) 
   for (const FaultHypothesis& h : default_fault_hypotheses())
     if (h.fault == "coil_resistance" && !h.channel) both = &h;
   ASSERT_NE(both, nullptr);
-  plant.change = [&](const std::string& p, std::size_t n) { return n >= kChangeAt ? 0.15 * both->signature.at(p) : 0.0; };
+  plant.change = [&](const std::string& p, std::size_t n) {
+    return n >= kChangeAt ? 0.15 * both->signature.at(p) : 0.0;
+  };
   engine.process(plant.windows(0, kChangeAt));
   std::vector<Alert> alerts = engine.process(plant.window(kChangeAt));
   for (const Alert& a : engine.process(plant.windows(kChangeAt + 1, kChangeAt + 5))) alerts.push_back(a);
@@ -233,7 +235,7 @@ TEST(DiagnosticsEngine, StaleAfterTimeoutThenOkWhenEstimatesResume) {
   DiagnosticsEngine engine(store, config);
   SyntheticPlant plant("bearing-A", 27, 0.005);
   ASSERT_TRUE(engine.process(plant.windows(0, 60)).empty());  // up to t = 59
-  EXPECT_TRUE(engine.check_stale(69.0).empty());               // 10 s: not yet
+  EXPECT_TRUE(engine.check_stale(69.0).empty());              // 10 s: not yet
   const std::vector<Alert> stale = engine.check_stale(69.5);
   ASSERT_EQ(stale.size(), 7u);
   for (const Alert& a : stale) {

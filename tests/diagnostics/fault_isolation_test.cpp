@@ -129,12 +129,11 @@ TEST(FaultIsolation, OneParameterAloneNamesItsOwnFault) {
     std::optional<int> channel;
     const char* subject;
   };
-  for (const Case c : {Case{"R1", "coil_resistance", 1, "coil 1 resistance"},
-                       Case{"R2", "coil_resistance", 2, "coil 2 resistance"},
-                       Case{"kw1", "amplifier_gain", 1, "amplifier 1 gain"},
-                       Case{"kw2", "amplifier_gain", 2, "amplifier 2 gain"},
-                       Case{"kr1", "force_factor", 1, "coil 1 force factor"},
-                       Case{"kr2", "force_factor", 2, "coil 2 force factor"}, Case{"ks", "air_gap", {}, "air gap"}}) {
+  for (const Case c :
+       {Case{"R1", "coil_resistance", 1, "coil 1 resistance"}, Case{"R2", "coil_resistance", 2, "coil 2 resistance"},
+        Case{"kw1", "amplifier_gain", 1, "amplifier 1 gain"}, Case{"kw2", "amplifier_gain", 2, "amplifier 2 gain"},
+        Case{"kr1", "force_factor", 1, "coil 1 force factor"}, Case{"kr2", "force_factor", 2, "coil 2 force factor"},
+        Case{"ks", "air_gap", {}, "air gap"}}) {
     const std::vector<Isolation> r = isolate({moved(c.parameter, 0.2)});
     ASSERT_EQ(r.size(), 1u);
     EXPECT_EQ(r[0].parameter, c.parameter);
@@ -149,9 +148,9 @@ TEST(FaultIsolation, OneParameterAloneNamesItsOwnFault) {
 }
 
 TEST(FaultIsolation, Vocabulary) {
-  for (const char* f : {"coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current", "sensor_delay",
-                        "sensor_gain", "flexible_mode", "magnetic_saturation", "air_gap", "rotor_mass",
-                        "harmonic_disturbance", "force_factor"})
+  for (const char* f :
+       {"coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current", "sensor_delay", "sensor_gain",
+        "flexible_mode", "magnetic_saturation", "air_gap", "rotor_mass", "harmonic_disturbance", "force_factor"})
     EXPECT_TRUE(is_known_fault(f)) << f;
   EXPECT_FALSE(is_known_fault("shorted_turns"));
   for (const FaultHypothesis& h : default_fault_hypotheses()) EXPECT_TRUE(is_known_fault(h.fault)) << h.subject;

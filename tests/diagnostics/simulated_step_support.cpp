@@ -18,8 +18,10 @@ constexpr std::size_t kStepAt = 40;
 void PrintTo(const StepCase& c, std::ostream* os) { *os << c.parameter; }
 
 const std::vector<StepCase>& step_cases() {
-  static const std::vector<StepCase> cases = {{"R1", "coil_resistance", 1}, {"R2", "coil_resistance", 2},
-                                              {"kw1", "amplifier_gain", 1}, {"kw2", "amplifier_gain", 2}};
+  static const std::vector<StepCase> cases = {{"R1", "coil_resistance", 1},
+                                              {"R2", "coil_resistance", 2},
+                                              {"kw1", "amplifier_gain", 1},
+                                              {"kw2", "amplifier_gain", 2}};
   return cases;
 }
 
@@ -42,7 +44,8 @@ void check_step(const StepCase& c, double relative, std::uint64_t seed, std::siz
   }
   ASSERT_TRUE(error_time) << what << describe_alerts(r.alerts);
   const double first_changed = r.windows[kStepAt].time;
-  EXPECT_LE(*error_time, first_changed + static_cast<double>(windows - 1) * bearing.window + 1e-9) << what << describe_alerts(r.alerts);
+  EXPECT_LE(*error_time, first_changed + static_cast<double>(windows - 1) * bearing.window + 1e-9)
+      << what << describe_alerts(r.alerts);
   EXPECT_GE(*error_time, first_changed) << what << describe_alerts(r.alerts);
 }
 

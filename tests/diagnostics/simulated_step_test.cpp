@@ -15,9 +15,7 @@ class SimulatedStep : public ::testing::TestWithParam<testing::StepCase> {};
 // The fault also moves the operating point: R1 +20 % lowers both bias currents by 4.5 %, so
 // the identified ks falls ~8 % and kr1, kr2 ~4 % (fault_signatures_test.cpp); those alerts
 // must name coil 1 resistance too (fault_isolation.hpp: the closed-loop signatures).
-TEST_P(SimulatedStep, ErrorNamesTheFaultWithinAFewWindows) {
-  testing::check_step(GetParam(), 0.2, 5000, 3);
-}
+TEST_P(SimulatedStep, ErrorNamesTheFaultWithinAFewWindows) { testing::check_step(GetParam(), 0.2, 5000, 3); }
 
 INSTANTIATE_TEST_SUITE_P(Faults, SimulatedStep, ::testing::ValuesIn(testing::step_cases()),
                          [](const ::testing::TestParamInfo<testing::StepCase>& p) { return p.param.parameter; });

@@ -19,10 +19,10 @@ namespace ambid::diag::testing {
 
 struct SimulatedBearing {
   std::string plant_id = "bearing-A";
-  std::uint64_t seed = 1;   // window n uses seed + n
-  double window = 0.25;     // s identified
-  double settle = 0.25;     // s simulated before it
-  double amplitude = 1.0;   // PRBS level per input (V)
+  std::uint64_t seed = 1;        // window n uses seed + n
+  double window = 0.25;          // s identified
+  double settle = 0.25;          // s simulated before it
+  double amplitude = 1.0;        // PRBS level per input (V)
   double position_noise = 1e-9;  // m, std of the x sensor
   double current_noise = 1e-6;   // A, std of the i1, i2 sensors
   // Relative change of each true parameter in window n ({"R1", 0.2}: R1 20 % above nominal).
@@ -41,7 +41,7 @@ struct SimulatedSequence {
 SimulatedSequence run_simulated_sequence(const SimulatedBearing& bearing, std::size_t windows,
                                          const std::string& store_name, const EngineConfig& config);
 
-bool raised(const Alert& a);                             // WARN or ERROR
+bool raised(const Alert& a);                                    // WARN or ERROR
 std::string describe_alerts(const std::vector<Alert>& alerts);  // one JSON line each
 
 }  // namespace ambid::diag::testing

@@ -29,9 +29,7 @@ struct SyntheticPlant {
   std::string plant_id;
   double relative_sigma;
   double period = 1.0;
-  std::function<double(const std::string&, std::size_t)> change = [](const std::string&, std::size_t) {
-    return 0.0;
-  };
+  std::function<double(const std::string&, std::size_t)> change = [](const std::string&, std::size_t) { return 0.0; };
   std::vector<std::string> parameters;  // which parameters a window carries (all by default)
   std::mt19937_64 rng;
 };

@@ -198,7 +198,8 @@ TEST(TrendStore, ErrorsNameTheOperationAndSqlitesMessage) {
   Batch batch;
   batch.windows.push_back(window(1.0, "bearing-A", {{"R1", 17.5, 0.05}}));
   message = error_of([&] { reader.write(batch); });
-  EXPECT_NE(message.find(": insert estimate: attempt to write a readonly database (code 8)"), std::string::npos) << message;
+  EXPECT_NE(message.find(": insert estimate: attempt to write a readonly database (code 8)"), std::string::npos)
+      << message;
 
   TrendStore store(path);
   batch.windows.push_back(window(2.0, "bearing-A", {{"R1", 17.5, -0.05}}));
@@ -225,8 +226,8 @@ TEST(TrendStore, ConcurrentReaderSeesWholeBatches) {
       for (int b = 0; b < kBatches; ++b) {
         Batch batch;
         for (int j = 0; j < kWindows; ++j)
-          batch.windows.push_back(window(b * kWindows + j, "bearing-A",
-                                         {{"R1", 17.5, 0.05}, {"R2", 17.5, 0.05}, {"kw1", 1.0, 0.002}}));
+          batch.windows.push_back(
+              window(b * kWindows + j, "bearing-A", {{"R1", 17.5, 0.05}, {"R2", 17.5, 0.05}, {"kw1", 1.0, 0.002}}));
         batch.alerts.push_back(alert(b, "bearing-A", Level::warn));
         store.write(batch);
       }

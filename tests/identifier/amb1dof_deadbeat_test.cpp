@@ -23,7 +23,7 @@ constexpr double kT = 1e-4;
 
 struct Case {
   sim::Amb1dofParameters truth;
-  ContinuousSystem plant;      // linear truth, states x, x', i1, i2
+  ContinuousSystem plant;  // linear truth, states x, x', i1, i2
   DiscreteSystem discrete;
   StateSpaceController controller;  // designed on the NOMINAL model
 };
@@ -67,7 +67,6 @@ Experiment run(const Case& c, const Eigen::MatrixXd& r, const Eigen::MatrixXd& n
 }
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
-
 
 TEST(Amb1dofDeadbeat, NoiseFreeLinearModelIsExact) {
   const Case c = make_case(sim::Amb1dofParameters::nominal());

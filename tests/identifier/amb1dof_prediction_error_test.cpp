@@ -11,10 +11,10 @@
 #include <cmath>
 #include <string>
 
+#include "amb1dof_truth.hpp"
 #include "core/error.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
-#include "amb1dof_truth.hpp"
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {

@@ -21,7 +21,7 @@ inline std::map<std::string, double> true_structure(const sim::ScenarioOptions& 
   rest.position_noise = rest.current_noise = rest.force_noise = 0.0;
   const Experiment e = sim::simulate_scenario(rest);
   const Eigen::RowVectorXd last = e.y.bottomRows(1);
-  EXPECT_LT(std::abs(last(0)), 1e-12);                      // x back at 0 (integral action)
+  EXPECT_LT(std::abs(last(0)), 1e-12);                     // x back at 0 (integral action)
   EXPECT_LT(std::abs(last(1) - last(2)), 1e-9 * last(1));  // equal currents (K1 = K2)
   sim::Amb1dofParameters truth = sim::Amb1dofParameters::nominal();
   for (const auto& [name, value] : scenario.true_parameters) truth.set(name, value);

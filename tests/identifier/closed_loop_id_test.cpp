@@ -82,8 +82,8 @@ TEST(KnownControllerClid, NoiseFreeLeeControllerIsExact) {
   EXPECT_LT(e_markov, 1e-8);
   EXPECT_EQ(res.suggested_order, 4);
   EXPECT_EQ(res.plant.states(), 4);
-  const double e_model = max_relative_error(
-      Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 40), 1, 40);
+  const double e_model =
+      max_relative_error(Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 40), 1, 40);
   EXPECT_LT(e_model, 1e-8);
   const double e_eig = eigenvalue_error(P.A, res.plant.A);
   EXPECT_LT(e_eig, 1e-8);
@@ -104,10 +104,11 @@ TEST(KnownControllerClid, NoiseFreeObserverControllerReadingUIsExact) {
   P.C = random_matrix(2, 4, rng);
   P.D = Eigen::MatrixXd::Zero(2, 2);
   P.G = Eigen::MatrixXd::Zero(4, 2);
-  const Eigen::MatrixXd F = testing::lqr_gain(P.A, P.B, Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2));
-  const Eigen::MatrixXd L =
-      testing::lqr_gain(P.A.transpose(), P.C.transpose(), Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2))
-          .transpose();
+  const Eigen::MatrixXd F =
+      testing::lqr_gain(P.A, P.B, Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2));
+  const Eigen::MatrixXd L = testing::lqr_gain(P.A.transpose(), P.C.transpose(), Eigen::MatrixXd::Identity(4, 4),
+                                              Eigen::MatrixXd::Identity(2, 2))
+                                .transpose();
   ASSERT_LT(spectral_radius(P.A - P.B * F), 1.0);
   ASSERT_LT(spectral_radius(P.A - L * P.C), 1.0);
   testing::Controller K;

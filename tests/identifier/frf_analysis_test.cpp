@@ -11,9 +11,9 @@
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
 #include "identifier/frequency_domain/freq_response.hpp"
-#include "identifier/frf_analysis.hpp"
-#include "identifier/frequency_domain/sensitivity_function.hpp"
 #include "identifier/frequency_domain/frf_grey_box.hpp"
+#include "identifier/frequency_domain/sensitivity_function.hpp"
+#include "identifier/frf_analysis.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/scenario.hpp"
@@ -103,17 +103,20 @@ TEST_F(BearingMultisine, SensitivityPeaksAndControllerCheck) {
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_NEAR(report->sensitivity_peaks[i].magnitude_db, model_peaks[i].magnitude_db, 0.1) << i;
     EXPECT_EQ(report->sensitivity_peaks[i].zone, iso14839_zone(model_peaks[i].magnitude_db));
-    RecordProperty("peak_db_" + report->sensitivity_peaks[i].loop, std::to_string(report->sensitivity_peaks[i].magnitude_db));
+    RecordProperty("peak_db_" + report->sensitivity_peaks[i].loop,
+                   std::to_string(report->sensitivity_peaks[i].magnitude_db));
   }
   ASSERT_TRUE(report->controller_check.has_value());
-  std::vector<double> e(report->controller_check->relative_error.data(),
-                        report->controller_check->relative_error.data() + report->controller_check->relative_error.size());
+  std::vector<double> e(
+      report->controller_check->relative_error.data(),
+      report->controller_check->relative_error.data() + report->controller_check->relative_error.size());
   std::sort(e.begin(), e.end());
   EXPECT_LT(e[e.size() / 2], 1e-3);
 }
 
 TEST_F(BearingMultisine, FitFindsTheUnstablePole) {
-  const auto it = std::find_if(report->fits.begin(), report->fits.end(), [](const FittedPair& p) { return p.name == "x/u1"; });
+  const auto it =
+      std::find_if(report->fits.begin(), report->fits.end(), [](const FittedPair& p) { return p.name == "x/u1"; });
   ASSERT_NE(it, report->fits.end());
   const double truth = unstable_pole_of_linear_bearing();
   const Eigen::VectorXcd p = it->fit.model.poles();

@@ -21,7 +21,7 @@ namespace {
 
 using test::kPi;
 
-constexpr double kT = 1e-4;       // 10 kHz, as the bearing rigs
+constexpr double kT = 1e-4;        // 10 kHz, as the bearing rigs
 constexpr Eigen::Index kN = 2000;  // 0.2 s period: lines every 5 Hz
 
 std::vector<Eigen::Index> lines_up_to(Eigen::Index last, Eigen::Index step = 1) {
@@ -74,9 +74,9 @@ TEST_F(SalesRotorLoop, OpenLoopFrfFromClosedLoopData) {
     }
   }
   EXPECT_EQ(checked, 199);
-  EXPECT_LT(worst_mag, 0.01);    // the brief: 1 % magnitude
-  EXPECT_LT(worst_phase, 1.0);   // and 1 degree below 1 kHz
-  EXPECT_LT(worst_rel, 1e-7);    // in fact exact up to the transient left after two periods
+  EXPECT_LT(worst_mag, 0.01);   // the brief: 1 % magnitude
+  EXPECT_LT(worst_phase, 1.0);  // and 1 degree below 1 kHz
+  EXPECT_LT(worst_rel, 1e-7);   // in fact exact up to the transient left after two periods
   // The plant is unstable: at 5 Hz (31 rad/s < 52.9 rad/s) the response is negative real,
   // G ~ 840 / (-(2800 + w^2)) — not what a stable plant at low frequency would show.
   EXPECT_LT(estimate.plant.value[0](0, 0).real(), 0.0);
@@ -121,7 +121,10 @@ TEST_F(SalesRotorLoop, MeasuredSensitivityMatchesModel) {
   const Frf S_meas = input_sensitivity_from_reference(estimate.input_from_reference, controller, test::sales_signals());
   const Frf S_model = input_sensitivity(plant, controller, test::sales_signals(), S_meas.frequency_hz);
   for (Eigen::Index l = 0; l < S_meas.lines(); ++l)
-    EXPECT_LT(std::abs(S_meas.value[static_cast<std::size_t>(l)](0, 0) / S_model.value[static_cast<std::size_t>(l)](0, 0) - 1.0), 1e-7);
+    EXPECT_LT(
+        std::abs(S_meas.value[static_cast<std::size_t>(l)](0, 0) / S_model.value[static_cast<std::size_t>(l)](0, 0) -
+                 1.0),
+        1e-7);
   // Independent: S = 1 / (1 - K G) with the closed-form ZOH plant and controller.
   for (Eigen::Index l = 0; l < S_meas.lines(); ++l) {
     const std::complex<double> z = std::polar(1.0, 2.0 * kPi * S_meas.frequency_hz(l) * kT);

@@ -12,9 +12,9 @@
 #include "identifier/frequency_domain/freq_response.hpp"
 #include "identifier/frequency_domain/frf_dft.hpp"
 #include "identifier/frequency_domain/frf_periodic.hpp"
+#include "identifier/frequency_domain/rational_fit.hpp"
 #include "identifier/frf_types.hpp"
 #include "identifier/frf_welch.hpp"
-#include "identifier/frequency_domain/rational_fit.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -219,7 +219,8 @@ TEST(FrfConventions, RationalFitGivesPolesWithTheirSign) {
   EXPECT_LT(test::phase_deg(lag.response(1.0 / tau)), -44.99);
   const RationalModel unstable = fit([&](std::complex<double> s) { return 1.0 / (tau * s - 1.0); }, 1);
   EXPECT_NEAR(unstable.poles()(0).real(), 1.0 / tau, 1e-6 / tau);
-  const RationalModel mode = fit([&](std::complex<double> s) { return wn * wn / (s * s + 2.0 * zeta * wn * s + wn * wn); }, 2);
+  const RationalModel mode =
+      fit([&](std::complex<double> s) { return wn * wn / (s * s + 2.0 * zeta * wn * s + wn * wn); }, 2);
   const Eigen::VectorXcd p = mode.poles();
   ASSERT_EQ(p.size(), 2);
   for (Eigen::Index i = 0; i < 2; ++i) {
@@ -231,7 +232,7 @@ TEST(FrfConventions, RationalFitGivesPolesWithTheirSign) {
 
 TEST(FrfConventions, ConfidenceRadiusFactor) {
   EXPECT_NEAR(confidence_radius_factor(0.95, 0.0), 2.995732273554, 1e-10);  // -ln 0.05
-  EXPECT_NEAR(confidence_radius_factor(0.95, 2.0), 19.0, 1e-10);           // F(2,2) 95 % = 19
+  EXPECT_NEAR(confidence_radius_factor(0.95, 2.0), 19.0, 1e-10);            // F(2,2) 95 % = 19
   EXPECT_NEAR(confidence_radius_factor(0.95, 10.0), 4.102821015130, 1e-8);  // F(2,10) 95 %
   EXPECT_NEAR(confidence_radius_factor(0.95, 1e7), 2.9957, 1e-4);
   EXPECT_THROW(confidence_radius_factor(1.0, 2.0), Error);

@@ -107,8 +107,10 @@ TEST(FrfNoise, ConfidenceDiscsCoverTheTruth) {
       const double f = e.plant.frequency_hz(l);
       const std::complex<double> G0 = loop.G(f), S0 = loop.S(f);
       covered_g += std::norm(e.plant.value[li](0, 0) - G0) <= factor * e.plant.variance[li](0, 0);
-      covered_yr += std::norm(e.output_from_reference.value[li](0, 0) - G0 * S0) <= factor * e.output_from_reference.variance[li](0, 0);
-      covered_ur += std::norm(e.input_from_reference.value[li](0, 0) - S0) <= factor * e.input_from_reference.variance[li](0, 0);
+      covered_yr += std::norm(e.output_from_reference.value[li](0, 0) - G0 * S0) <=
+                    factor * e.output_from_reference.variance[li](0, 0);
+      covered_ur +=
+          std::norm(e.input_from_reference.value[li](0, 0) - S0) <= factor * e.input_from_reference.variance[li](0, 0);
       variance_ratio += std::norm(e.plant.value[li](0, 0) - G0) / e.plant.variance[li](0, 0);
       ++total;
     }

@@ -11,8 +11,8 @@
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
 #include "identifier/frequency_domain/freq_response.hpp"
-#include "identifier/frf_analysis.hpp"
 #include "identifier/frequency_domain/frf_stepped_sine.hpp"
+#include "identifier/frf_analysis.hpp"
 #include "plant_sim/excitation.hpp"
 
 namespace ambid::ident {
@@ -53,7 +53,8 @@ class SalesSteppedSine : public ::testing::Test {
 };
 
 TEST_F(SalesSteppedSine, EachStepGivesTheOpenLoopPlant) {
-  const SteppedSineFrf e = estimate_stepped_sine_frf(excitation.samples, data.u, data.y, options_from(excitation.description.json()));
+  const SteppedSineFrf e =
+      estimate_stepped_sine_frf(excitation.samples, data.u, data.y, options_from(excitation.description.json()));
   ASSERT_EQ(e.plant.lines(), static_cast<Eigen::Index>(excitation.description.json()["steps"].size()));
   double worst = 0.0;
   for (Eigen::Index l = 0; l < e.plant.lines(); ++l) {
@@ -108,7 +109,8 @@ TEST_F(SalesSteppedSine, Refusals) {
   o.f_min = 2000.0;
   EXPECT_THROW(estimate_stepped_sine_frf(excitation.samples, data.u, data.y, o), InsufficientData);
   const Eigen::MatrixXd silent = Eigen::MatrixXd::Zero(excitation.samples.rows(), 1);
-  EXPECT_THROW(estimate_stepped_sine_frf(silent, data.u, data.y, options_from(excitation.description.json())), InsufficientData);
+  EXPECT_THROW(estimate_stepped_sine_frf(silent, data.u, data.y, options_from(excitation.description.json())),
+               InsufficientData);
 }
 
 }  // namespace

@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 
-#include "core/linalg.hpp"
 #include "core/experiment.hpp"
+#include "core/linalg.hpp"
 #include "core/state_space.hpp"
 #include "identifier/frequency_domain/frf_loop.hpp"
 
@@ -122,9 +122,9 @@ struct LoopData {
 // with the given standard deviations; y is what the controller receives and what is recorded),
 // controller from the contract (its inputs name signals of `signals`), u = uf + r. The plant
 // must have D = 0.
-inline LoopData simulate_loop(const DiscreteSystem& plant, const StateSpaceController& K, const LoopSignalNames& signals,
-                              const Eigen::MatrixXd& r, double y_noise_std = 0.0, double u_noise_std = 0.0,
-                              std::uint64_t seed = 1) {
+inline LoopData simulate_loop(const DiscreteSystem& plant, const StateSpaceController& K,
+                              const LoopSignalNames& signals, const Eigen::MatrixXd& r, double y_noise_std = 0.0,
+                              double u_noise_std = 0.0, std::uint64_t seed = 1) {
   const Eigen::Index N = r.rows(), ny = plant.outputs(), nu = plant.inputs();
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -149,7 +149,8 @@ inline LoopData simulate_loop(const DiscreteSystem& plant, const StateSpaceContr
     const Eigen::VectorXd uf = K.C * xc + K.D * v;
     for (std::size_t o = 0; o < K.outputs.size(); ++o)
       for (Eigen::Index i = 0; i < nu; ++i)
-        if (signals.u[static_cast<std::size_t>(i)] == K.outputs[o]) u(i) = uf(static_cast<Eigen::Index>(o)) + r(k, static_cast<Eigen::Index>(o));
+        if (signals.u[static_cast<std::size_t>(i)] == K.outputs[o])
+          u(i) = uf(static_cast<Eigen::Index>(o)) + r(k, static_cast<Eigen::Index>(o));
     for (std::size_t c = 0; c < K.inputs.size(); ++c) v(static_cast<Eigen::Index>(c)) = value_of(K.inputs[c], u);
     out.y.row(k) = y.transpose();
     out.u.row(k) = u.transpose();

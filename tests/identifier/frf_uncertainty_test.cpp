@@ -27,7 +27,8 @@ cd eq6(cd s, double shift) {
 Frf sample(const Eigen::VectorXd& f, const std::function<cd(cd)>& G) {
   Frf out;
   out.frequency_hz = f;
-  for (Eigen::Index k = 0; k < f.size(); ++k) out.value.push_back(Eigen::MatrixXcd::Constant(1, 1, G(cd(0.0, 2.0 * kPi * f(k)))));
+  for (Eigen::Index k = 0; k < f.size(); ++k)
+    out.value.push_back(Eigen::MatrixXcd::Constant(1, 1, G(cd(0.0, 2.0 * kPi * f(k)))));
   return out;
 }
 

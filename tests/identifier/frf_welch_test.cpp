@@ -107,7 +107,7 @@ TEST(FrfWelch, DirectEstimateIsBiasedUnderFeedbackWithNoise) {
   RecordProperty("median_error_indirect", std::to_string(median(err_indirect)));
   RecordProperty("median_error_direct", std::to_string(median(err_direct)));
   EXPECT_LT(median(err_indirect), 0.15);
-  EXPECT_GT(median(err_direct), 0.3);             // visibly biased (0.48 .. 1.06 here)
+  EXPECT_GT(median(err_direct), 0.3);  // visibly biased (0.48 .. 1.06 here)
   EXPECT_EQ(direct_outside, 10);
   EXPECT_LT(median(err_direct_vs_theory), 0.05);  // and biased the way the theory says
   EXPECT_GE(covered, 8);                          // 95 % discs, 10 lines

@@ -24,7 +24,7 @@ Problem errors_in_variables(Eigen::Index rows, std::mt19937_64& rng) {
   double previous_r = 0.0;
   for (Eigen::Index k = 0; k < rows; ++k) {
     const double r = normal(rng);
-    const double s = r + previous_r;  // the true regressor, variance 2
+    const double s = r + previous_r;                 // the true regressor, variance 2
     p.phi(k, 0) = s + std::sqrt(2.0) * normal(rng);  // measured with noise of variance 2
     p.phi(k, 1) = 1.0;
     p.z(k, 0) = 3.0 * s - 0.5 + 0.1 * normal(rng);

@@ -9,8 +9,8 @@
 
 #include "core/error.hpp"
 #include "frf_test_helpers.hpp"
-#include "identifier/iso_14839.hpp"
 #include "identifier/frequency_domain/sensitivity_function.hpp"
+#include "identifier/iso_14839.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -61,8 +61,8 @@ TEST(Iso14839, ConstructedLoopsAroundEachLimit) {
     double db;
     IsoZone zone;
   };
-  const Case cases[] = {{9.49, IsoZone::A}, {9.51, IsoZone::B}, {11.99, IsoZone::B}, {12.01, IsoZone::C},
-                        {13.99, IsoZone::C}, {14.01, IsoZone::D}, {6.0, IsoZone::A},  {20.0, IsoZone::D}};
+  const Case cases[] = {{9.49, IsoZone::A},  {9.51, IsoZone::B},  {11.99, IsoZone::B}, {12.01, IsoZone::C},
+                        {13.99, IsoZone::C}, {14.01, IsoZone::D}, {6.0, IsoZone::A},   {20.0, IsoZone::D}};
   for (const Case& c : cases) {
     const Frf S = constructed_sensitivity(c.db);
     const auto peaks = sensitivity_peaks(S, {"x"});

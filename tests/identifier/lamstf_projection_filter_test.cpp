@@ -31,8 +31,8 @@
 
 #include <gtest/gtest.h>
 
-#include "identifier/time_domain/markov.hpp"
 #include "identifier/families/physical_coordinates.hpp"
+#include "identifier/time_domain/markov.hpp"
 #include "identifier/time_domain/projection_filter.hpp"
 #include "plant_sim/lamstf.hpp"
 #include "plant_sim/lqr.hpp"

@@ -53,8 +53,8 @@ TEST(LeastSquares, StreamingBlocksEqualOneShotAndTheSvdSolution) {
     EXPECT_LT((s.residual_covariance - gram / 992.0).norm() / gram.norm(), 1e-11);
     // (Phi'Phi)^-1 from Phi's own SVD: V S^-2 V'.
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi, Eigen::ComputeThinV);
-    const Eigen::MatrixXd ig = svd.matrixV() * svd.singularValues().cwiseAbs2().cwiseInverse().asDiagonal() *
-                               svd.matrixV().transpose();
+    const Eigen::MatrixXd ig =
+        svd.matrixV() * svd.singularValues().cwiseAbs2().cwiseInverse().asDiagonal() * svd.matrixV().transpose();
     EXPECT_LT((s.inverse_gram - ig).norm() / ig.norm(), 1e-11);
     EXPECT_NEAR(s.covariance(2, 1, 4, 0), s.residual_covariance(1, 0) * ig(2, 4), 1e-11 * std::abs(ig(2, 4)) + 1e-18);
   }

@@ -223,9 +223,9 @@ TEST(Markov, StateSpaceMarkovAndErrorMeasure) {
   const MarkovSequence y = markov_parameters(A, B, Cm, Eigen::MatrixXd(), 3);
   ASSERT_EQ(y.size(), 4u);
   EXPECT_EQ(y[0](0, 0), 0.0);
-  EXPECT_EQ(y[1](0, 0), 0.0);       // C B
-  EXPECT_EQ(y[2](0, 0), 1.0);       // C A B
-  EXPECT_EQ(y[3](0, 0), 2.5);       // C A^2 B = 0.5 + 2
+  EXPECT_EQ(y[1](0, 0), 0.0);  // C B
+  EXPECT_EQ(y[2](0, 0), 1.0);  // C A B
+  EXPECT_EQ(y[3](0, 0), 2.5);  // C A^2 B = 0.5 + 2
   MarkovSequence est = y;
   est[3](0, 0) = 2.5 * 1.02;
   const auto e = markov_errors_percent(y, est, 2, 2);

@@ -64,7 +64,7 @@ TEST(PhysicalCoordinates, WrongShapesAndSingularMapsAreErrors) {
   s.C = Eigen::MatrixXd::Ones(1, 3);
   s.D = Eigen::MatrixXd::Zero(1, 1);
   EXPECT_THROW(second_order_form(s), Error);  // 3 states, 1 output
-  s.A = Eigen::MatrixXd::Identity(2, 2);       // C A = C: [C; C A] singular
+  s.A = Eigen::MatrixXd::Identity(2, 2);      // C A = C: [C; C A] singular
   s.B = Eigen::MatrixXd::Ones(2, 1);
   s.C = Eigen::MatrixXd::Ones(1, 2);
   EXPECT_THROW(second_order_form(s), Error);

@@ -37,7 +37,8 @@ Eigen::MatrixXd state_feedback(const testing::Plant& P) {
 void expect_exact(const testing::Plant& P, const Eigen::MatrixXd& F, const ProjectionFilterResult& res, double tol) {
   const auto Y = markov_of(P.A, P.B, P.C, P.D, 40);
   const double e_markov = max_relative_error(Y, res.plant_markov.system, 0, 25);
-  const double e_model = max_relative_error(Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 40), 0, 40);
+  const double e_model =
+      max_relative_error(Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 40), 0, 40);
   const auto FB = markov_of(P.A, P.B, -F, Eigen::MatrixXd::Zero(2, 2), 40);
   const double e_fb_markov = max_relative_error(FB, res.feedback_markov.system, 1, 25);
   const double e_fb = max_relative_error(
@@ -101,9 +102,9 @@ TEST(ProjectionFilter, NoiseFreeObserverBasedController) {
   std::mt19937_64 rng(83);
   const testing::Plant P = unstable_plant(rng, false);
   const Eigen::MatrixXd F = state_feedback(P);
-  const Eigen::MatrixXd L =
-      testing::lqr_gain(P.A.transpose(), P.C.transpose(), Eigen::MatrixXd::Identity(4, 4), Eigen::MatrixXd::Identity(2, 2))
-          .transpose();
+  const Eigen::MatrixXd L = testing::lqr_gain(P.A.transpose(), P.C.transpose(), Eigen::MatrixXd::Identity(4, 4),
+                                              Eigen::MatrixXd::Identity(2, 2))
+                                .transpose();
   testing::Controller K;
   K.A = P.A - L * P.C;
   K.B.resize(4, 4);
@@ -148,17 +149,17 @@ TEST(ProjectionFilter, NoisyDataKeepThePlantUnstable) {
   o.era.order = 4;
   const ProjectionFilterResult res = identify_projection_filter(d.y, d.u, d.uf, o);
   const auto Y = markov_of(P.A, P.B, P.C, P.D, 30);
-  const double e_model = max_relative_error(Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 30), 1, 30);
+  const double e_model =
+      max_relative_error(Y, markov_of(res.plant.A, res.plant.B, res.plant.C, res.plant.D, 30), 1, 30);
   const double e_eig = eigenvalue_error(P.A, res.plant.A);
   const auto Nt = markov_of(P.A, P.G, P.C, Eigen::MatrixXd::Identity(2, 2), 5);
   const auto Nh = markov_of(res.plant.A, res.predictor_gain, res.plant.C, Eigen::MatrixXd::Identity(2, 2), 5);
   const double e_gain = max_relative_error(Nt, Nh, 1, 5);
   // The closed loop with the identified F, compared by its Markov parameters while they are
   // significant (its poles are within 0.32 of the origin).
-  const double e_cl = max_relative_error(markov_of(P.A - P.B * F, P.B, P.C, P.D, 5),
-                                         markov_of(res.plant.A - res.plant.B * res.feedback_gain, res.plant.B,
-                                                   res.plant.C, res.plant.D, 5),
-                                         1, 5);
+  const double e_cl = max_relative_error(
+      markov_of(P.A - P.B * F, P.B, P.C, P.D, 5),
+      markov_of(res.plant.A - res.plant.B * res.feedback_gain, res.plant.B, res.plant.C, res.plant.D, 5), 1, 5);
   EXPECT_LT(e_model, 0.02);
   EXPECT_LT(e_eig, 0.01);
   EXPECT_LT(e_gain, 0.05);

@@ -25,7 +25,8 @@ cd beam_eq7(cd s) { return -7.19 * (s - 408.56) * (s + 412.90) / ((s + 107.77) *
 
 Eigen::VectorXd log_grid(double f0, double f1, Eigen::Index n) {
   Eigen::VectorXd f(n);
-  for (Eigen::Index i = 0; i < n; ++i) f(i) = f0 * std::pow(f1 / f0, static_cast<double>(i) / static_cast<double>(n - 1));
+  for (Eigen::Index i = 0; i < n; ++i)
+    f(i) = f0 * std::pow(f1 / f0, static_cast<double>(i) / static_cast<double>(n - 1));
   return f;
 }
 
@@ -136,8 +137,8 @@ TEST(RationalFit, UnstablePoleOfTheSalesRotorFromNoiseFreeClosedLoopData) {
   const double unstable = std::sqrt(2800.0);  // 52.915 rad/s
   const cd p = nearest(fit.model.poles(), unstable);
   RecordProperty("unstable_pole_noise_free", std::to_string(p.real()));
-  EXPECT_LT(std::abs(p - unstable), 0.01 * unstable);   // the brief: 1 %
-  EXPECT_LT(std::abs(p - unstable), 1e-3 * unstable);   // in fact (aliasing of the hold neglected)
+  EXPECT_LT(std::abs(p - unstable), 0.01 * unstable);  // the brief: 1 %
+  EXPECT_LT(std::abs(p - unstable), 1e-3 * unstable);  // in fact (aliasing of the hold neglected)
   EXPECT_LT(std::abs(nearest(fit.model.poles(), -unstable) + unstable), 1e-3 * unstable);
   EXPECT_NEAR(fit.model.gain(), 840.0, 0.840);
   // Without the ZOH compensation the half-sample delay is fitted as dynamics: worse.
@@ -157,7 +158,8 @@ TEST(RationalFit, UnstablePoleFromNoisyDataWithNoiseWeights) {
     o.numerator_degree = 0;
     o.denominator_degree = 2;
     o.zoh_sample_time = 1e-4;
-    const RationalFit fit = fit_rational(e.plant.frequency_hz, e.plant.element(0, 0), e.plant.element_variance(0, 0), o);
+    const RationalFit fit =
+        fit_rational(e.plant.frequency_hz, e.plant.element(0, 0), e.plant.element_variance(0, 0), o);
     EXPECT_EQ(fit.weighting, FitWeighting::noise);
     EXPECT_TRUE(fit.refined);
     EXPECT_GT(fit.misfit, 0.5);  // at the noise level (about 1; 14-dof variances are noisy)
@@ -178,8 +180,8 @@ TEST(RationalFit, OrderSelectionWithNoiseWeights) {
   OrderSearchOptions o;
   o.max_denominator_degree = 4;
   o.fit.zoh_sample_time = 1e-4;
-  const OrderSelection sel = select_rational_order(e.plant.frequency_hz, e.plant.element(0, 0),
-                                                   e.plant.element_variance(0, 0), o);
+  const OrderSelection sel =
+      select_rational_order(e.plant.frequency_hz, e.plant.element(0, 0), e.plant.element_variance(0, 0), o);
   const OrderCandidate& c = sel.candidates[sel.chosen];
   EXPECT_EQ(c.denominator_degree, 2);
   EXPECT_EQ(c.numerator_degree, 0);
@@ -199,11 +201,11 @@ TEST(RationalFit, RefusesBadInput) {
   o.denominator_degree = 3;
   EXPECT_THROW(fit_rational(f, G, Eigen::VectorXd(), o), InsufficientData);  // 6 parameters, 4 lines
   o.numerator_degree = 4;
-  EXPECT_THROW(fit_rational(f, G, Eigen::VectorXd(), o), Error);             // improper
+  EXPECT_THROW(fit_rational(f, G, Eigen::VectorXd(), o), Error);  // improper
   o.numerator_degree = 0;
   o.denominator_degree = 1;
   o.weighting = FitWeighting::noise;
-  EXPECT_THROW(fit_rational(f, G, Eigen::VectorXd(), o), Error);             // no variances
+  EXPECT_THROW(fit_rational(f, G, Eigen::VectorXd(), o), Error);  // no variances
   Eigen::VectorXd bad = f;
   bad(2) = bad(1);
   o.weighting = FitWeighting::relative;

@@ -12,11 +12,11 @@
 #include <cmath>
 #include <string>
 
+#include "amb1dof_truth.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/scenario.hpp"
-#include "amb1dof_truth.hpp"
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
@@ -27,8 +27,7 @@ struct Example {
   std::string v;          // the structure parameter that must move by +20 %
 };
 
-void check_example(const Example& example, const std::string& method, double change_tolerance,
-                   double rest_tolerance) {
+void check_example(const Example& example, const std::string& method, double change_tolerance, double rest_tolerance) {
   SCOPED_TRACE(example.parameter + " by " + method);
   const auto nominal = sim::amb1dof_structure_parameters(sim::Amb1dofParameters::nominal());
   sim::ScenarioOptions scenario;

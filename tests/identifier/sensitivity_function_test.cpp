@@ -22,7 +22,8 @@ TEST(SensitivityFunction, SisoClosedForm) {
     const std::complex<double> s(0.0, 2.0 * kPi * f);
     const std::complex<double> G = 840.0 / (s * s - 2800.0), K = -(kp + kd * s);
     const std::complex<double> expected = (s * s - 2800.0) / (s * s + 840.0 * kd * s + 840.0 * kp - 2800.0);
-    const Eigen::MatrixXcd S = input_sensitivity(Eigen::MatrixXcd::Constant(1, 1, G), Eigen::MatrixXcd::Constant(1, 1, K));
+    const Eigen::MatrixXcd S =
+        input_sensitivity(Eigen::MatrixXcd::Constant(1, 1, G), Eigen::MatrixXcd::Constant(1, 1, K));
     EXPECT_LT(std::abs(S(0, 0) - expected), 1e-12 * std::abs(expected)) << f;
   }
 }

@@ -46,7 +46,8 @@ inline Eigen::MatrixXd matrix_with_eigenvalues(const std::vector<std::complex<do
   }
   // T = Q (I + 0.3 G): orthogonal times a moderate perturbation, condition number a few.
   const Eigen::MatrixXd Q = linalg::qr_q(random_matrix(n, n, rng));
-  const Eigen::MatrixXd T = Q * (Eigen::MatrixXd::Identity(n, n) + 0.3 * random_matrix(n, n, rng) / std::sqrt(double(n)));
+  const Eigen::MatrixXd T =
+      Q * (Eigen::MatrixXd::Identity(n, n) + 0.3 * random_matrix(n, n, rng) / std::sqrt(double(n)));
   return T * J * linalg::inverse(T);
 }
 
@@ -104,8 +105,8 @@ inline double max_relative_error(const std::vector<Eigen::MatrixXd>& truth, cons
   return e;
 }
 
-inline std::vector<Eigen::MatrixXd> markov_of(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
-                                              const Eigen::MatrixXd& D, int count) {
+inline std::vector<Eigen::MatrixXd> markov_of(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
+                                              const Eigen::MatrixXd& C, const Eigen::MatrixXd& D, int count) {
   std::vector<Eigen::MatrixXd> y{D};
   Eigen::MatrixXd AkB = B;
   for (int k = 1; k <= count; ++k) {

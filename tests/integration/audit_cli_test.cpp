@@ -35,9 +35,10 @@ const std::string kNoisy = " --duration 0.5 --amplitude 0.3 --position-noise 2e-
 
 TEST(SimEffectCli, EffectsChangeTheTruthNotTheSidecar) {
   const fs::path dir = fresh_dir("sim_effect");
-  CommandResult r = run_ambid("sim --duration 0.1 --effect amplifier_bandwidth --set channel=2 --set amplifier_bandwidth.tau=2e-4 "
-                              "--effect eddy_current --set eddy_current.tau=1e-4 --set R1=18 --out " +
-                              (dir / "two").string());
+  CommandResult r = run_ambid(
+      "sim --duration 0.1 --effect amplifier_bandwidth --set channel=2 --set amplifier_bandwidth.tau=2e-4 "
+      "--effect eddy_current --set eddy_current.tau=1e-4 --set R1=18 --out " +
+      (dir / "two").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const Experiment e = read_experiment(dir / "two").experiment;
   EXPECT_DOUBLE_EQ(e.plant.parameters.at("R1"), 17.5);
@@ -62,7 +63,8 @@ TEST(SimEffectCli, UnknownEffectsAndParametersListTheValidOnes) {
 
 TEST(AuditCli, NamesTheHiddenEffectAndWritesItsFiles) {
   const fs::path dir = fresh_dir("audit_gain");
-  ASSERT_EQ(run_ambid("sim" + kNoisy + " --effect sensor_gain --set dgain=-0.12 --out " + (dir / "run").string()).status, 0);
+  ASSERT_EQ(
+      run_ambid("sim" + kNoisy + " --effect sensor_gain --set dgain=-0.12 --out " + (dir / "run").string()).status, 0);
   const CommandResult r = run_ambid("audit " + (dir / "run.json").string() + " --out " + (dir / "audit").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("misses sensor_gain"));
@@ -98,18 +100,22 @@ TEST(AuditCli, RefusesWhatItCannotAudit) {
 
 // The screenshot of the report must carry far more than that of an empty page of the same size.
 TEST(AuditCli, ReportRendersInHeadlessChromium) {
-  if (cli_test::run_command("command -v chromium").status != 0) FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
+  if (cli_test::run_command("command -v chromium").status != 0)
+    FAIL() << "chromium is not installed (scripts/setup.sh installs it)";
   const fs::path dir = fresh_dir("audit_chromium");
   ASSERT_EQ(run_ambid("sim" + kNoisy + " --effect harmonic_disturbance --set f=90 --set Fc=0.3 --out " +
-                      (dir / "run").string()).status, 0);
+                      (dir / "run").string())
+                .status,
+            0);
   ASSERT_EQ(run_ambid("audit " + (dir / "run.json").string() + " --out " + (dir / "audit").string()).status, 0);
   std::ofstream(dir / "empty.html") << "<!DOCTYPE html><html><body></body></html>\n";
   auto screenshot = [&](const fs::path& page, const fs::path& png) {
     const fs::path profile = dir / ("profile-" + png.stem().string());
-    const CommandResult r = cli_test::run_command("timeout 120 chromium --headless --no-sandbox --disable-gpu "
-                                "--disable-background-networking --disable-component-update --disable-sync "
-                                "--no-first-run --user-data-dir=" + profile.string() + " --screenshot=" +
-                                png.string() + " --window-size=1200,2400 file://" + page.string());
+    const CommandResult r = cli_test::run_command(
+        "timeout 120 chromium --headless --no-sandbox --disable-gpu "
+        "--disable-background-networking --disable-component-update --disable-sync "
+        "--no-first-run --user-data-dir=" +
+        profile.string() + " --screenshot=" + png.string() + " --window-size=1200,2400 file://" + page.string());
     EXPECT_EQ(r.status, 0) << r.output;
     return fs::exists(png) ? fs::file_size(png) : 0;
   };

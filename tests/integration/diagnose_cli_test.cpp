@@ -14,10 +14,10 @@
 namespace ambid {
 namespace {
 
-using ::testing::HasSubstr;
 using cli_test::fresh_dir;
 using cli_test::read_json;
 using cli_test::run_ambid;
+using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 const std::string kNoise = " --duration 0.5 --amplitude 1 --position-noise 1e-9 --current-noise 1e-6";
@@ -59,7 +59,8 @@ TEST(DiagnoseCli, HotCoilOneIsNamedCoilResistanceChannelOne) {
   EXPECT_EQ(d["baseline_windows"], 6);  // 3 experiments x two 0.25 s windows
   ASSERT_FALSE(d["alerts"].empty());
   for (const auto& a : d["alerts"])
-    for (const char* key : {"time", "plant_id", "level", "fault", "channel", "parameter", "value", "baseline", "message"})
+    for (const char* key :
+         {"time", "plant_id", "level", "fault", "channel", "parameter", "value", "baseline", "message"})
       EXPECT_TRUE(a.contains(key)) << key << " missing in " << a.dump();
   const auto& a = d["alerts"][0];
   EXPECT_EQ(a["parameter"], "R1") << d["alerts"].dump(2);
@@ -128,8 +129,13 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
     m["method"] = "deadbeat";
     m["sample_time"] = 1e-4;
     m["discrete"] = {{"A", {{1.0}}}, {"B", {{0.0}}}, {"C", {{1.0}}}, {"D", {{0.0}}}};
-    m["physical"] = {{"R1", 17.5 * f * (i >= 5 ? 1.2 : 1.0)}, {"R2", 17.5 / f}, {"kw1", f}, {"kw2", 1.0 / f},
-                     {"kr1", 490.0 * f}, {"kr2", 490.0 / f}, {"ks", 1.4e6 * f}};
+    m["physical"] = {{"R1", 17.5 * f * (i >= 5 ? 1.2 : 1.0)},
+                     {"R2", 17.5 / f},
+                     {"kw1", f},
+                     {"kw2", 1.0 / f},
+                     {"kr1", 490.0 * f},
+                     {"kr2", 490.0 / f},
+                     {"ks", 1.4e6 * f}};
     m["uncertainty"] = {{"R1", 0.05}, {"R2", 0.05}, {"kw1", 0.003}, {"kw2", 0.003},
                         {"kr1", 1.5}, {"kr2", 1.5}, {"ks", 4000.0}};
     files.push_back((dir / ("model" + std::to_string(i) + ".json")).string());

@@ -21,16 +21,17 @@
 namespace ambid {
 namespace {
 
-using ::testing::HasSubstr;
 using cli_test::CommandResult;
 using cli_test::run_ambid;
+using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 // The sampled linear plant's response at f: C (e^{jwT} I - A)^-1 B + D of its ZOH discretisation.
 Eigen::MatrixXcd sampled_linear_plant(double f, double T) {
   const DiscreteSystem d = c2d_zoh(sim::Amb1dofVoltage().linearize(), T);
   const std::complex<double> z = std::exp(std::complex<double>(0.0, 2.0 * std::numbers::pi * f * T));
-  const Eigen::MatrixXcd resolvent = z * Eigen::MatrixXcd::Identity(d.A.rows(), d.A.cols()) - d.A.cast<std::complex<double>>();
+  const Eigen::MatrixXcd resolvent =
+      z * Eigen::MatrixXcd::Identity(d.A.rows(), d.A.cols()) - d.A.cast<std::complex<double>>();
   return d.C.cast<std::complex<double>>() * linalg::lu_solve(resolvent, d.B.cast<std::complex<double>>()).x +
          d.D.cast<std::complex<double>>();
 }
@@ -157,7 +158,8 @@ TEST(FrfCli, DataThatCannotSupportAnFrfIsRefused) {
   EXPECT_THAT(r.output, HasSubstr("no_r.json: records no excitation"));
 
   // The sidecar promises 1 s periods; the record holds 0.3 s.
-  const fs::path too_short = edited_copy(dir, "too_short", [](nlohmann::json& j) { j["excitation"]["period_samples"] = 10000; });
+  const fs::path too_short =
+      edited_copy(dir, "too_short", [](nlohmann::json& j) { j["excitation"]["period_samples"] = 10000; });
   r = run_ambid("frf " + too_short.string() + out);
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.output, HasSubstr("too_short.json: periodic FRF: 0 whole periods"));

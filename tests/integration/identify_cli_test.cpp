@@ -20,17 +20,17 @@
 namespace ambid {
 namespace {
 
-using ::testing::HasSubstr;
 using cli_test::CommandResult;
 using cli_test::fresh_dir;
 using cli_test::run_ambid;
 using nlohmann::json;
+using ::testing::HasSubstr;
 namespace fs = std::filesystem;
 
 // experiment-format.md, "Plant model amb1dof_voltage" (exact to the digits printed there).
-const std::map<std::string, double> kTrueV = {{"v1", 777777.8}, {"v2", 272.222},  {"v3", 272.222},
-                                              {"v4", 1142.191}, {"v5", 40.7925},  {"v6", 1142.191},
-                                              {"v7", 40.7925},  {"v8", 2.33100},  {"v9", 2.33100}};
+const std::map<std::string, double> kTrueV = {{"v1", 777777.8}, {"v2", 272.222}, {"v3", 272.222},
+                                              {"v4", 1142.191}, {"v5", 40.7925}, {"v6", 1142.191},
+                                              {"v7", 40.7925},  {"v8", 2.33100}, {"v9", 2.33100}};
 
 // A 0.4 s nominal run (PRBS 0.05 V), shared by the tests of one directory.
 fs::path simulate(const fs::path& dir, const std::string& extra = "") {

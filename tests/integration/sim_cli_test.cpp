@@ -23,7 +23,8 @@ using cli_test::run_ambid;
 
 TEST(SimCli, WritesAnExperimentTheReaderAccepts) {
   const fs::path dir = fresh_dir("sim_nominal");
-  const CommandResult r = run_ambid("sim --plant amb1dof_voltage --duration 0.2 --seed 7 --out " + (dir / "nominal").string());
+  const CommandResult r =
+      run_ambid("sim --plant amb1dof_voltage --duration 0.2 --seed 7 --out " + (dir / "nominal").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("2000 samples"));
   const ReadResult read = read_experiment(dir / "nominal.json");

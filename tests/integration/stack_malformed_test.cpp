@@ -114,7 +114,8 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_identification_seconds_count{role=\"identifier\"} 1"));
   EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_received_total{role=\"identifier\"} " +
                                             std::to_string((received_before + 13) * 500)));
-  EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"rejected\",role=\"identifier\"} 1500"));
+  EXPECT_THAT(metrics,
+              ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"rejected\",role=\"identifier\"} 1500"));
   EXPECT_THAT(metrics, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"} 0"));
   // A sequence gap: 7 batches (0.25 s settling, 1000 samples buffered), then batch 8 without 7:
   // the 1000 buffered samples are dropped and counted.
@@ -126,8 +127,10 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   })) << last->received - received_before;
   const std::string after_gap = http_get(19175, "/metrics");
   EXPECT_THAT(after_gap, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"gap\",role=\"identifier\"} 1000"));
-  EXPECT_THAT(after_gap, ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"unidentified\",role=\"identifier\"} 0"));
-  EXPECT_THAT(stack.log("identifier"), ::testing::HasSubstr("1000 samples dropped: batch 8 does not follow the previous one"));
+  EXPECT_THAT(after_gap,
+              ::testing::HasSubstr("ambid_samples_dropped_total{reason=\"unidentified\",role=\"identifier\"} 0"));
+  EXPECT_THAT(stack.log("identifier"),
+              ::testing::HasSubstr("1000 samples dropped: batch 8 does not follow the previous one"));
   const std::string log = stack.log("identifier");
   EXPECT_THAT(log, ::testing::HasSubstr("a sample value is not finite"));
   EXPECT_THAT(log, ::testing::HasSubstr("signal names differ"));

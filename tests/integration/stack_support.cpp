@@ -3,9 +3,9 @@
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
-#include <sys/socket.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -46,8 +46,7 @@ Stack::Stack(const std::string& name, int domain, const std::map<std::string, st
   fs::remove_all(dir_);
   fs::create_directories(dir_);
   const fs::path config = fs::path(AMBID_SOURCE_DIR) / "deploy" / "config";
-  std::ofstream(dir_ / "plant.json") << R"({"source": "sim", "target": ")"
-                                     << (config / "nominal-bearing.json").string()
+  std::ofstream(dir_ / "plant.json") << R"({"source": "sim", "target": ")" << (config / "nominal-bearing.json").string()
                                      << R"(", "batch_samples": 500, "speed": 10})";
   std::ofstream(dir_ / "identifier.json") << R"({"window": 0.25, "settle": 0.25})";
   std::ofstream(dir_ / "diagnostics.json")

@@ -87,7 +87,8 @@ TEST(Stack, DaemonsSplitAcrossVendors) {
 
 // The other direction for every hop: samples Cyclone -> Fast DDS, models Fast DDS -> Cyclone.
 TEST(Stack, DaemonsSplitAcrossVendorsTheOtherWay) {
-  Stack stack("stack_mixed_reverse", 172, {{"plant", "cyclone"}, {"identifier", "fastdds"}, {"diagnostics", "cyclone"}});
+  Stack stack("stack_mixed_reverse", 172,
+              {{"plant", "cyclone"}, {"identifier", "fastdds"}, {"diagnostics", "cyclone"}});
   start_all(stack);
   expect_coil1_error(stack);
 }

@@ -47,13 +47,11 @@ TEST(Amb1dofPhysical, BadInputIsNamed) {
   EXPECT_THAT([&] { amb1dof_physical_from_structure(v, 0.429, 0.429, -1.0); },
               ::testing::ThrowsMessage<Error>(HasSubstr("mass m")));
   v.erase("v7");
-  EXPECT_THAT([&] { amb1dof_structure_system(v); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("'v7' is missing")));
+  EXPECT_THAT([&] { amb1dof_structure_system(v); }, ::testing::ThrowsMessage<Error>(HasSubstr("'v7' is missing")));
   ContinuousSystem small;
   small.A = Eigen::MatrixXd::Zero(2, 2);
   small.B = Eigen::MatrixXd::Zero(2, 1);
-  EXPECT_THAT([&] { amb1dof_structure_parameters(small); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("A 2x2")));
+  EXPECT_THAT([&] { amb1dof_structure_parameters(small); }, ::testing::ThrowsMessage<Error>(HasSubstr("A 2x2")));
 }
 
 }  // namespace

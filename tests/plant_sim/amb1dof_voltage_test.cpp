@@ -22,9 +22,8 @@ std::map<std::string, double> expected_v(const Amb1dofParameters& p) {
   const double kr2 = p.K2 * p.i0 / (2 * p.x0 * p.x0);
   const double L1 = p.Ls1 + p.K1 / (2 * p.x0);
   const double L2 = p.Ls2 + p.K2 / (2 * p.x0);
-  return {{"v1", (ks1 + ks2) / p.m}, {"v2", kr1 / p.m}, {"v3", kr2 / p.m},
-          {"v4", kr1 / L1},          {"v5", p.R1 / L1}, {"v6", kr2 / L2},
-          {"v7", p.R2 / L2},         {"v8", p.kw1 / L1}, {"v9", p.kw2 / L2}};
+  return {{"v1", (ks1 + ks2) / p.m}, {"v2", kr1 / p.m}, {"v3", kr2 / p.m},  {"v4", kr1 / L1},  {"v5", p.R1 / L1},
+          {"v6", kr2 / L2},          {"v7", p.R2 / L2}, {"v8", p.kw1 / L1}, {"v9", p.kw2 / L2}};
 }
 
 TEST(Amb1dofParameters, NominalValuesOfTheContract) {
@@ -182,10 +181,8 @@ TEST(Amb1dofVoltage, AnalyticLinearisationHasTheSignsOfEquationThree) {
   const ContinuousSystem sys = plant.linearize();
   const auto v = expected_v(plant.parameters());
   Eigen::Matrix4d A;
-  A << 0, 1, 0, 0,
-       v.at("v1"), 0, v.at("v2"), -v.at("v3"),
-       0, -v.at("v4"), -v.at("v5"), 0,
-       0, v.at("v6"), 0, -v.at("v7");
+  A << 0, 1, 0, 0, v.at("v1"), 0, v.at("v2"), -v.at("v3"), 0, -v.at("v4"), -v.at("v5"), 0, 0, v.at("v6"), 0,
+      -v.at("v7");
   Eigen::Matrix<double, 4, 2> B;
   B << 0, 0, 0, 0, v.at("v8"), 0, 0, v.at("v9");
   Eigen::Matrix<double, 3, 4> C;

@@ -36,8 +36,7 @@ struct RotorLoop {
     o.R = Eigen::MatrixXd::Identity(1, 1);
     o.W = Eigen::MatrixXd::Identity(2, 2);
     o.V = Eigen::MatrixXd::Identity(1, 1) * 1e-2;
-    header.controller = design_observer_controller(named.system, header.sample_time, header.u_names,
-                                                   header.y_names, o);
+    header.controller = design_observer_controller(named.system, header.sample_time, header.u_names, header.y_names, o);
   }
 };
 
@@ -50,8 +49,8 @@ TEST(ClosedLoop, LinearPlantMatchesExactZohClosedLoop) {
   const Experiment e = run_closed_loop(loop.plant, loop.header, options);
 
   const DiscreteSystem plant_d = c2d_zoh(loop.named.system, loop.header.sample_time);
-  const DiscreteSystem cl = linear_closed_loop(plant_d, loop.header.u_names, loop.header.y_names,
-                                               *loop.header.controller);
+  const DiscreteSystem cl =
+      linear_closed_loop(plant_d, loop.header.u_names, loop.header.y_names, *loop.header.controller);
   ASSERT_LT(spectral_radius(cl), 1.0);
   const Eigen::MatrixXd expected = simulate(cl, options.excitation);  // outputs [y; u]
   const double scale = expected.cwiseAbs().maxCoeff();

@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "core/linalg.hpp"
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/dare.hpp"
 #include "plant_sim/lqr.hpp"
 
@@ -29,17 +29,15 @@ Eigen::MatrixXd random_matrix(std::mt19937_64& rng, Eigen::Index rows, Eigen::In
   return m;
 }
 
-double relative_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                         const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                         const Eigen::MatrixXd& X, const Eigen::MatrixXd& N = {}) {
+double relative_residual(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                         const Eigen::MatrixXd& R, const Eigen::MatrixXd& X, const Eigen::MatrixXd& N = {}) {
   return dare_residual(A, B, Q, R, X, N).norm() / std::max(1.0, X.norm());
 }
 
 // Riccati difference equation from X = 0, iterated to its fixed point: an independent
 // (slow, linearly converging) route to the stabilising solution.
-Eigen::MatrixXd riccati_recursion(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B,
-                                  const Eigen::MatrixXd& Q, const Eigen::MatrixXd& R,
-                                  const Eigen::MatrixXd& N) {
+Eigen::MatrixXd riccati_recursion(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
+                                  const Eigen::MatrixXd& R, const Eigen::MatrixXd& N) {
   Eigen::MatrixXd X = Eigen::MatrixXd::Zero(A.rows(), A.rows());
   for (int k = 0; k < 2000; ++k) {
     const Eigen::MatrixXd cross = A.transpose() * X * B + N;
@@ -75,8 +73,7 @@ TEST(Dare, RandomMimoResidualAndStability) {
     const LqrGain g = dlqr(A, B, Q, R);
     EXPECT_LT(relative_residual(A, B, Q, R, g.X), 1e-10) << "trial " << trial;
     EXPECT_LT((g.X - g.X.transpose()).norm(), 1e-10 * g.X.norm());
-    EXPECT_GE(linalg::symmetric_eigenvalues(g.X).minCoeff(),
-              -1e-9 * g.X.norm());
+    EXPECT_GE(linalg::symmetric_eigenvalues(g.X).minCoeff(), -1e-9 * g.X.norm());
     EXPECT_LT(g.closed_loop_poles.cwiseAbs().maxCoeff(), 1.0);
   }
 }
@@ -140,9 +137,7 @@ TEST(Dare, RejectsBadWeights) {
   EXPECT_THROW(solve_dare(A, B, Q, scalar(1.0), scalar(5.0)), Error);  // [1 5; 5 1] indefinite
   Eigen::MatrixXd Qa(2, 2);
   Qa << 1, 2, 0, 1;
-  EXPECT_THROW(solve_dare(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Ones(2, 1), Qa,
-                          scalar(1.0)),
-               Error);
+  EXPECT_THROW(solve_dare(Eigen::MatrixXd::Identity(2, 2), Eigen::MatrixXd::Ones(2, 1), Qa, scalar(1.0)), Error);
 }
 
 TEST(Dare, PredictorGainIsDualAndSatisfiesFilterRiccati) {

@@ -5,12 +5,12 @@
 #include <complex>
 #include <numbers>
 
-#include <Eigen/Core>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
-#include "core/linalg.hpp"
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/effects.hpp"
 #include "plant_sim/linearize.hpp"
@@ -41,10 +41,10 @@ double acceleration(const Plant& plant, const std::map<int, double>& state) {
 }
 
 TEST(EffectCatalogue, VocabularyOfTheContract) {
-  EXPECT_EQ(effect_names(), (std::vector<std::string>{"coil_resistance", "amplifier_gain", "amplifier_bandwidth",
-                                                      "eddy_current", "sensor_delay", "sensor_gain", "flexible_mode",
-                                                      "magnetic_saturation", "air_gap", "rotor_mass",
-                                                      "harmonic_disturbance"}));
+  EXPECT_EQ(effect_names(),
+            (std::vector<std::string>{"coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current",
+                                      "sensor_delay", "sensor_gain", "flexible_mode", "magnetic_saturation", "air_gap",
+                                      "rotor_mass", "harmonic_disturbance"}));
   for (const auto& spec : effect_catalogue()) {
     EXPECT_TRUE(make_effect(spec.name).neutral()) << spec.name;
     EXPECT_EQ(make_effect(spec.name).channel, spec.has_channel ? 1 : 0);
@@ -54,17 +54,36 @@ TEST(EffectCatalogue, VocabularyOfTheContract) {
 
 TEST(EffectCatalogue, BadNamesAndValuesAreClearErrors) {
   EXPECT_THAT([] { make_effect("eddy"); }, ::testing::ThrowsMessage<Error>(HasSubstr("known: coil_resistance")));
-  EXPECT_THAT([] { make_effect("eddy_current", {{"delay", 1e-4}}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("no parameter 'delay' (valid: tau)")));
-  EXPECT_THAT([] { make_effect("coil_resistance", {{"channel", 3}}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("channel must be 1 or 2")));
-  EXPECT_THAT([] { make_effect("sensor_delay", {{"delay", -1e-4}}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("outside")));
-  EXPECT_THAT([] { make_effect("sensor_gain", {{"dgain", NAN}}); }, ::testing::ThrowsMessage<Error>(HasSubstr("dgain")));
-  EXPECT_THAT([] { Amb1dofExtended(Amb1dofParameters::nominal(), {Effect{"coil_resistance", 1, {{"dR", -17.5}}}}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("R1")));
-  EXPECT_THAT([] { Amb1dofExtended(Amb1dofParameters::nominal(), {make_effect("sensor_delay", {{"delay", 1e-4}})}); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("positive sample time")));
+  EXPECT_THAT(
+      [] {
+        make_effect("eddy_current", {{"delay", 1e-4}});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("no parameter 'delay' (valid: tau)")));
+  EXPECT_THAT(
+      [] {
+        make_effect("coil_resistance", {{"channel", 3}});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("channel must be 1 or 2")));
+  EXPECT_THAT(
+      [] {
+        make_effect("sensor_delay", {{"delay", -1e-4}});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("outside")));
+  EXPECT_THAT(
+      [] {
+        make_effect("sensor_gain", {{"dgain", NAN}});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("dgain")));
+  EXPECT_THAT(
+      [] {
+        Amb1dofExtended(Amb1dofParameters::nominal(), {Effect{"coil_resistance", 1, {{"dR", -17.5}}}});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("R1")));
+  EXPECT_THAT(
+      [] {
+        Amb1dofExtended(Amb1dofParameters::nominal(), {make_effect("sensor_delay", {{"delay", 1e-4}})});
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("positive sample time")));
 }
 
 TEST(Effects, NeutralEffectsGiveTheNominalBearingExactly) {
@@ -86,7 +105,8 @@ TEST(Effects, SmallEffectsChangeTheBearingInProportion) {
       for (const auto& p : spec.parameters)
         if (p.switches) values[p.name] = size * p.scale;
       const Experiment e = simulate({make_effect(spec.name, values)});
-      return (e.y - nominal.y).cwiseQuotient(nominal.y_deviation().cwiseAbs().colwise().maxCoeff().replicate(e.y.rows(), 1))
+      return (e.y - nominal.y)
+          .cwiseQuotient(nominal.y_deviation().cwiseAbs().colwise().maxCoeff().replicate(e.y.rows(), 1))
           .cwiseAbs()
           .maxCoeff();
     };
@@ -116,8 +136,10 @@ TEST(Effects, SensorDelayShiftsThePositionByItsSamples) {
   const double dt = 1e-4;
   const auto p = Amb1dofParameters::nominal();
   const Eigen::MatrixXd nominal = open_loop_outputs(Amb1dofVoltage(p), dt);
-  const Eigen::MatrixXd three = open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_delay", {{"delay", 3 * dt}})}, dt), dt);
-  const Eigen::MatrixXd half = open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_delay", {{"delay", 2.5 * dt}})}, dt), dt);
+  const Eigen::MatrixXd three =
+      open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_delay", {{"delay", 3 * dt}})}, dt), dt);
+  const Eigen::MatrixXd half =
+      open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_delay", {{"delay", 2.5 * dt}})}, dt), dt);
   EXPECT_EQ(three.rightCols(2), nominal.rightCols(2));
   for (int k = 3; k < 40; ++k) {
     EXPECT_DOUBLE_EQ(three(k, 0), nominal(k - 3, 0)) << k;
@@ -129,7 +151,8 @@ TEST(Effects, SensorDelayShiftsThePositionByItsSamples) {
 TEST(Effects, SensorGainScalesThePosition) {
   const auto p = Amb1dofParameters::nominal();
   const Eigen::MatrixXd nominal = open_loop_outputs(Amb1dofVoltage(p), 1e-4);
-  const Eigen::MatrixXd scaled = open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_gain", {{"dgain", -0.15}})}), 1e-4);
+  const Eigen::MatrixXd scaled =
+      open_loop_outputs(Amb1dofExtended(p, {make_effect("sensor_gain", {{"dgain", -0.15}})}), 1e-4);
   for (int k = 0; k < 40; ++k) EXPECT_DOUBLE_EQ(scaled(k, 0), 0.85 * nominal(k, 0));
   EXPECT_EQ(scaled.rightCols(2), nominal.rightCols(2));
 }
@@ -164,7 +187,8 @@ TEST(Effects, CoilAndAmplifierEffectsChangeTheirChannelOnly) {
   const Eigen::VectorXd w = Eigen::VectorXd::Zero(1);
   const double L = p.Ls1 + p.K1 / (2 * p.x0);
   const Eigen::VectorXd d0 = nominal.derivative(x, u, w);
-  const Eigen::VectorXd dr = Amb1dofExtended(p, {make_effect("coil_resistance", {{"channel", 2}, {"dR", 3.0}})}).derivative(x, u, w);
+  const Eigen::VectorXd dr =
+      Amb1dofExtended(p, {make_effect("coil_resistance", {{"channel", 2}, {"dR", 3.0}})}).derivative(x, u, w);
   EXPECT_NEAR(dr[3] - d0[3], -3.0 * p.i0 / L, 1e-9);
   EXPECT_EQ(dr[2], d0[2]);
   const Eigen::VectorXd dk = Amb1dofExtended(p, {make_effect("amplifier_gain", {{"dkw", 0.2}})}).derivative(x, u, w);
@@ -245,9 +269,7 @@ TEST(Effects, SaturationFlattensTheForceLaw) {
 TEST(Effects, AirGapAndRotorMassChangeTheMechanics) {
   const auto p = Amb1dofParameters::nominal();
   const double x = 2e-5, dx0 = 3e-5, dm = 0.25;
-  auto force = [&](double gap) {
-    return p.K1 / 4 * (std::pow(p.i0 / (gap - x), 2) - std::pow(p.i0 / (gap + x), 2));
-  };
+  auto force = [&](double gap) { return p.K1 / 4 * (std::pow(p.i0 / (gap - x), 2) - std::pow(p.i0 / (gap + x), 2)); };
   EXPECT_NEAR(acceleration(Amb1dofExtended(p, {make_effect("air_gap", {{"dx0", dx0}})}), {{0, x}}),
               force(p.x0 + dx0) / p.m, 1e-9);
   EXPECT_NEAR(acceleration(Amb1dofExtended(p, {make_effect("rotor_mass", {{"dm", dm}})}), {{0, x}}),

@@ -42,8 +42,7 @@ TEST(Prbs, MaximalPeriodAndBalanceForEveryRegisterLength) {
     // ... and no shorter period dividing it (P is prime or its divisors are checked).
     for (Eigen::Index d = 1; d < P; ++d) {
       if (P % d != 0) continue;
-      EXPECT_GT((s.head(P - d) - s.segment(d, P - d)).cwiseAbs().maxCoeff(), 0.0)
-          << "n = " << n << " has period " << d;
+      EXPECT_GT((s.head(P - d) - s.segment(d, P - d)).cwiseAbs().maxCoeff(), 0.0) << "n = " << n << " has period " << d;
     }
     // Balance: 2^(n-1) ones, 2^(n-1) - 1 minus ones per period.
     EXPECT_DOUBLE_EQ(s.head(P).sum(), 0.5) << "n = " << n;
@@ -80,8 +79,7 @@ TEST(Prbs, ClockDividerSeedAndChannels) {
   // Channels are shifts of one m-sequence spaced by a third of the period.
   const auto shifts = a.description.json()["channel_shifts"];
   EXPECT_EQ((shifts[1].get<std::uint64_t>() + 511 - shifts[0].get<std::uint64_t>()) % 511, 170U);
-  for (Eigen::Index k = 0; k < 3 * (511 - 170); ++k)
-    EXPECT_EQ(a.samples(k, 1), a.samples(k + 3 * 170, 0));
+  for (Eigen::Index k = 0; k < 3 * (511 - 170); ++k) EXPECT_EQ(a.samples(k, 1), a.samples(k + 3 * 170, 0));
   o.seed = 12;
   EXPECT_NE(prbs(o, 3000, 1e-4).samples, a.samples);
 }
@@ -179,8 +177,7 @@ TEST(Multisine, HadamardPatternSeparatesChannels) {
   EXPECT_TRUE((H * H.transpose()).isApprox(4.0 * Eigen::MatrixXd::Identity(4, 4)));
   const Eigen::VectorXd s = e.samples.col(0).head(200);  // H(0, 0) = 1
   for (int p = 0; p < 8; ++p)
-    for (int j = 0; j < 3; ++j)
-      EXPECT_TRUE(e.samples.block(200 * p, j, 200, 1) == H(j, p % 4) * s) << p << " " << j;
+    for (int j = 0; j < 3; ++j) EXPECT_TRUE(e.samples.block(200 * p, j, 200, 1) == H(j, p % 4) * s) << p << " " << j;
   // Combining the period blocks with channel i's signs keeps channel i and cancels the rest.
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -202,12 +199,10 @@ TEST(Multisine, RejectsAnEmptyBand) {
 }
 
 // Frequency from two successive zero crossings (linear interpolation) around sample k.
-double zero_crossing_frequency(const Eigen::VectorXd& x, Eigen::Index from, double T,
-                               double* at) {
+double zero_crossing_frequency(const Eigen::VectorXd& x, Eigen::Index from, double T, double* at) {
   std::vector<double> crossings;
   for (Eigen::Index k = from; k + 1 < x.size() && crossings.size() < 2; ++k)
-    if ((x(k) < 0) != (x(k + 1) < 0))
-      crossings.push_back((static_cast<double>(k) + x(k) / (x(k) - x(k + 1))) * T);
+    if ((x(k) < 0) != (x(k + 1) < 0)) crossings.push_back((static_cast<double>(k) + x(k) / (x(k) - x(k + 1))) * T);
   *at = 0.5 * (crossings[0] + crossings[1]);
   return 0.5 / (crossings[1] - crossings[0]);
 }

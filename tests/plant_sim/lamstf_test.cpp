@@ -32,9 +32,8 @@ TEST(Lamstf, ShapeAndNames) {
 TEST(Lamstf, OpenLoopEigenvaluesMatchTable31) {
   const Eigen::VectorXcd p = poles(lamstf().system);
   // Table 3.1: +-58.78, +-j7.97, +-57.81, +-j0.96, +-9.78.
-  const std::vector<std::complex<double>> table = {
-      {58.78, 0}, {-58.78, 0}, {0, 7.97}, {0, -7.97}, {57.81, 0},
-      {-57.81, 0}, {0, 0.96}, {0, -0.96}, {9.78, 0}, {-9.78, 0}};
+  const std::vector<std::complex<double>> table = {{58.78, 0},  {-58.78, 0}, {0, 7.97},  {0, -7.97}, {57.81, 0},
+                                                   {-57.81, 0}, {0, 0.96},   {0, -0.96}, {9.78, 0},  {-9.78, 0}};
   std::vector<bool> used(static_cast<std::size_t>(p.size()), false);
   for (const auto& t : table) {
     double best = 1e300;
@@ -47,8 +46,7 @@ TEST(Lamstf, OpenLoopEigenvaluesMatchTable31) {
     used[static_cast<std::size_t>(best_k)] = true;
     // 0.1 %, or the rounding of the printed two decimals (0.96 stands for 0.9556).
     EXPECT_LE(best, std::max(1e-3 * std::abs(t), 0.005)) << "eigenvalue " << t << " nearest " << p[best_k];
-    std::cout << "Table 3.1 " << t << ": model " << p[best_k] << ", relative "
-              << best / std::abs(t) << "\n";
+    std::cout << "Table 3.1 " << t << ": model " << p[best_k] << ", relative " << best / std::abs(t) << "\n";
   }
   // A22 = 0: the oscillatory modes are undamped.
   for (Eigen::Index k = 0; k < p.size(); ++k) {

@@ -39,7 +39,8 @@ TEST(LinearPlant, RefusesInconsistentInput) {
   EXPECT_THAT([&] { LinearPlant{s}; }, ::testing::ThrowsMessage<Error>(HasSubstr("D must be zero")));
   s = sales_rotor();
   s.state_names = {"x"};
-  EXPECT_THAT([&] { LinearPlant{s}; }, ::testing::ThrowsMessage<Error>(HasSubstr("2 states need as many names, got 1")));
+  EXPECT_THAT([&] { LinearPlant{s}; },
+              ::testing::ThrowsMessage<Error>(HasSubstr("2 states need as many names, got 1")));
   s = sales_rotor();
   s.state_names = {"x", "x"};
   EXPECT_THAT([&] { LinearPlant{s}; }, ::testing::ThrowsMessage<Error>(HasSubstr("duplicate name 'x'")));
@@ -47,8 +48,7 @@ TEST(LinearPlant, RefusesInconsistentInput) {
               ::testing::ThrowsMessage<Error>(HasSubstr("2 rows")));
   EXPECT_THROW(LinearPlant(sales_rotor(), Eigen::Vector2d::Zero(), {"F", "G"}), Error);
   const LinearPlant plant(sales_rotor());
-  EXPECT_THROW(plant.derivative(Eigen::Vector3d::Zero(), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)),
-               Error);
+  EXPECT_THROW(plant.derivative(Eigen::Vector3d::Zero(), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)), Error);
 }
 
 }  // namespace

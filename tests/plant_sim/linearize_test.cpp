@@ -17,8 +17,8 @@ namespace {
 // Largest relative error over the entries where `exact` is non-zero; entries where it is zero
 // must be tiny against the largest entry of their row of `exact`.
 struct Comparison {
-  double relative = 0.0;   // max |num - exact| / |exact| over non-zero entries
-  double zero_ratio = 0.0; // max |num| / max|row of exact| over zero entries
+  double relative = 0.0;    // max |num - exact| / |exact| over non-zero entries
+  double zero_ratio = 0.0;  // max |num| / max|row of exact| over zero entries
 };
 
 Comparison compare(const Eigen::MatrixXd& num, const Eigen::MatrixXd& exact) {
@@ -40,9 +40,8 @@ void expect_numerical_matches_analytic(const Amb1dofVoltage& plant) {
   const ContinuousSystem num =
       linearize(plant, {.state_scale = plant.state_scale(), .input_scale = plant.input_scale()});
   const Comparison a = compare(num.A, exact.A), b = compare(num.B, exact.B), c = compare(num.C, exact.C);
-  std::cout << "numerical vs analytic: A rel " << a.relative << " zero " << a.zero_ratio
-            << "; B rel " << b.relative << " zero " << b.zero_ratio << "; C rel " << c.relative
-            << " zero " << c.zero_ratio << "\n";
+  std::cout << "numerical vs analytic: A rel " << a.relative << " zero " << a.zero_ratio << "; B rel " << b.relative
+            << " zero " << b.zero_ratio << "; C rel " << c.relative << " zero " << c.zero_ratio << "\n";
   EXPECT_LT(a.relative, 1e-6);
   EXPECT_LT(b.relative, 1e-6);
   EXPECT_LT(c.relative, 1e-12);
@@ -52,9 +51,7 @@ void expect_numerical_matches_analytic(const Amb1dofVoltage& plant) {
   EXPECT_TRUE(num.D.isZero(0.0));
 }
 
-TEST(Linearize, NumericalAgreesWithAnalyticAtNominal) {
-  expect_numerical_matches_analytic(Amb1dofVoltage());
-}
+TEST(Linearize, NumericalAgreesWithAnalyticAtNominal) { expect_numerical_matches_analytic(Amb1dofVoltage()); }
 
 TEST(Linearize, NumericalAgreesWithAnalyticWhenPerturbed) {
   auto p = Amb1dofParameters::nominal();

@@ -8,8 +8,8 @@
 
 #include <Eigen/Core>
 
-#include "core/linalg.hpp"
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/observer_controller.hpp"
 
@@ -27,8 +27,7 @@ ContinuousSystem amb_model(const std::string& parameter = "", double factor = 1.
 }
 
 StateSpaceController nominal_design() {
-  return design_observer_controller(amb_model(), kT, kInputs, kOutputs,
-                                    amb1dof_observer_controller_options());
+  return design_observer_controller(amb_model(), kT, kInputs, kOutputs, amb1dof_observer_controller_options());
 }
 
 TEST(ObserverController, ContractShape) {
@@ -107,8 +106,7 @@ TEST(ObserverController, ContractFormReproducesThePaperLaw) {
 
 TEST(ObserverController, IntegralActionRemovesStaticPositionError) {
   const StateSpaceController c = nominal_design();
-  const DiscreteSystem cl = linear_closed_loop(c2d_zoh(amb_model("R1", 1.2), kT), kInputs,
-                                               kOutputs, c);
+  const DiscreteSystem cl = linear_closed_loop(c2d_zoh(amb_model("R1", 1.2), kT), kInputs, kOutputs, c);
   // Static gain from a constant input offset r to [y; u]: the x row must vanish.
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(cl.states(), cl.states());
   const Eigen::MatrixXd dc = cl.C * linalg::lu_solve(I - cl.A, cl.B).x + cl.D;
@@ -150,8 +148,7 @@ TEST(ObserverController, RejectsBadOptions) {
   o = amb1dof_observer_controller_options();
   o.observer_pole_radius = 0.0;
   EXPECT_THROW(design_observer_controller(amb_model(), kT, kInputs, kOutputs, o), Error);
-  EXPECT_THROW(design_observer_controller(amb_model(), kT, {"u1"}, kOutputs,
-                                          amb1dof_observer_controller_options()),
+  EXPECT_THROW(design_observer_controller(amb_model(), kT, {"u1"}, kOutputs, amb1dof_observer_controller_options()),
                Error);
 }
 

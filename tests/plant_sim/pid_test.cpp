@@ -7,8 +7,8 @@
 
 #include <Eigen/Core>
 
-#include "core/linalg.hpp"
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/observer_controller.hpp"
 #include "plant_sim/pid.hpp"
 #include "plant_sim/sales_rotor.hpp"
@@ -16,9 +16,7 @@
 namespace ambid::sim {
 namespace {
 
-DiscreteSystem as_system(const StateSpaceController& c) {
-  return DiscreteSystem{c.A, c.B, c.C, c.D, c.sample_time};
-}
+DiscreteSystem as_system(const StateSpaceController& c) { return DiscreteSystem{c.A, c.B, c.C, c.D, c.sample_time}; }
 
 TEST(Pid, StepResponseMatchesDifferenceEquation) {
   const double T = 1e-3;
@@ -73,16 +71,14 @@ TEST(Pid, StabilisesTheSalesRotor) {
   // Without the controller's sign convention (positive feedback) the loop is unstable.
   PidLoop wrong = loop;
   wrong.drives = {{"u", -1.0}};
-  EXPECT_GT(spectral_radius(linear_closed_loop(
-                plant, rotor.input_names, rotor.output_names,
-                pid_controller({wrong}, T, rotor.input_names))),
+  EXPECT_GT(spectral_radius(linear_closed_loop(plant, rotor.input_names, rotor.output_names,
+                                               pid_controller({wrong}, T, rotor.input_names))),
             1.0);
 }
 
 TEST(LeadLag, SingleSectionMatchesTustinDifferenceEquation) {
   const double T = 1e-3, k = 2.5, lead = 8e-3, lag = 1e-3;
-  const StateSpaceController c =
-      lead_lag_controller({{"y", {{"u", 1.0}}, k, {{lead, lag}}}}, T, {"u"});
+  const StateSpaceController c = lead_lag_controller({{"y", {{"u", 1.0}}, k, {{lead, lag}}}}, T, {"u"});
   ASSERT_EQ(c.states(), 1);
   const int steps = 40;
   Eigen::MatrixXd y(steps, 1);
@@ -93,8 +89,7 @@ TEST(LeadLag, SingleSectionMatchesTustinDifferenceEquation) {
   for (int i = 0; i < steps; ++i) {
     const double e = -y(i, 0);
     const double expected =
-        (k * ((2 * lead / T + 1) * e + (1 - 2 * lead / T) * e_prev) - (1 - 2 * lag / T) * c_prev) /
-        (2 * lag / T + 1);
+        (k * ((2 * lead / T + 1) * e + (1 - 2 * lead / T) * e_prev) - (1 - 2 * lag / T) * c_prev) / (2 * lag / T + 1);
     EXPECT_NEAR(uf(i, 0), expected, 1e-12) << "k = " << i;
     c_prev = expected;
     e_prev = e;
@@ -111,8 +106,7 @@ TEST(LeadLag, CascadeFrequencyResponseIsTheWarpedContinuousOne) {
     const std::complex<double> z = std::exp(std::complex<double>(0.0, w * T));
     const std::complex<double> s = 2.0 / T * (z - 1.0) / (z + 1.0);
     std::complex<double> expected = -gain;  // e = -y
-    for (const auto& sec : sections)
-      expected *= (sec.lead_time_constant * s + 1.0) / (sec.lag_time_constant * s + 1.0);
+    for (const auto& sec : sections) expected *= (sec.lead_time_constant * s + 1.0) / (sec.lag_time_constant * s + 1.0);
     const Eigen::MatrixXcd zI = z * Eigen::MatrixXcd::Identity(3, 3);
     const Eigen::MatrixXcd H =
         c.C.cast<std::complex<double>>() *
@@ -129,8 +123,7 @@ TEST(LeadLag, StabilisesTheSalesRotor) {
   const double T = 1e-4;
   const StateSpaceController c =
       lead_lag_controller({{"y", {{"u", 1.0}}, 30.0, {{0.25 / 30.0, 1e-3}}}}, T, rotor.input_names);
-  const DiscreteSystem cl = linear_closed_loop(c2d_zoh(rotor.system, T), rotor.input_names,
-                                               rotor.output_names, c);
+  const DiscreteSystem cl = linear_closed_loop(c2d_zoh(rotor.system, T), rotor.input_names, rotor.output_names, c);
   EXPECT_LT(spectral_radius(cl), 1.0);
 }
 
@@ -140,8 +133,7 @@ TEST(Pid, RejectsBadLoops) {
   EXPECT_THROW(pid_controller({{"x", {{"u", 1.0}}, 1.0, 0.0, 1.0, 0.0}}, 1e-4, {"u"}), Error);
   EXPECT_THROW(pid_controller({{"x", {{"u", 1.0}}, 1.0, 0.0, 0.0, 0.0}}, 0.0, {"u"}), Error);
   EXPECT_THROW(pid_controller({{"u", {{"u", 1.0}}, 1.0, 0.0, 0.0, 0.0}}, 1e-4, {"u"}), Error);
-  EXPECT_THROW(lead_lag_controller({{"x", {{"u", 1.0}}, 1.0, {{1e-3, 0.0}}}}, 1e-4, {"u"}),
-               Error);
+  EXPECT_THROW(lead_lag_controller({{"x", {{"u", 1.0}}, 1.0, {{1e-3, 0.0}}}}, 1e-4, {"u"}), Error);
 }
 
 }  // namespace

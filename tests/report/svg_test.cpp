@@ -46,8 +46,8 @@ Axes axes_of(std::vector<Series> series) {
 }
 
 Figure bode_like() {
-  Axes magnitude = axes_of({markers("measured", {1, 10, 100}, {0, -20, -40}),
-                            line("fit", {1, 10, 100}, {0.5, -19, -41})});
+  Axes magnitude =
+      axes_of({markers("measured", {1, 10, 100}, {0, -20, -40}), line("fit", {1, 10, 100}, {0.5, -19, -41})});
   magnitude.title = "x/u1";
   magnitude.y_label = "|G| [dB]";
   magnitude.log_x = true;
@@ -77,8 +77,8 @@ TEST(Svg, KnownPointLandsAtItsPixel) {
   EXPECT_NEAR(layout.x_scale.to_pixel(10.0), x, 1e-9);
   EXPECT_NEAR(layout.y_scale.to_pixel(5.0), y, 1e-9);
   const std::string svg = render_svg(figure);
-  const std::string expected = "M" + fixed2(x) + " " + fixed2(y) + "L" +
-                               fixed2(layout.left + layout.width) + " " + fixed2(layout.top);
+  const std::string expected =
+      "M" + fixed2(x) + " " + fixed2(y) + "L" + fixed2(layout.left + layout.width) + " " + fixed2(layout.top);
   EXPECT_NE(svg.find("d=\"" + expected + "\""), std::string::npos) << svg;
 }
 
@@ -113,7 +113,7 @@ TEST(Svg, OutputIsWellFormedXmlWithLegendTitlesAndMarkers) {
   EXPECT_NE(svg.find(">frequency [Hz]</text>"), std::string::npos);
   EXPECT_NE(svg.find(">limit</text>"), std::string::npos);
   EXPECT_NE(svg.find("<circle"), std::string::npos);
-  EXPECT_NE(svg.find(">100</text>"), std::string::npos);  // the last decade tick
+  EXPECT_NE(svg.find(">100</text>"), std::string::npos);   // the last decade tick
   EXPECT_EQ(svg.find(">1000</text>"), std::string::npos);  // x range is [1, 100]
 }
 
@@ -122,8 +122,7 @@ TEST(Svg, LabelsAreEscaped) {
   figure.title = "R1 <drift> & \"hot\" 'coil'";
   figure.axes[0].series[0].label = "a<b";
   const std::string svg = render_svg(figure);
-  EXPECT_NE(svg.find("R1 &lt;drift&gt; &amp; &quot;hot&quot; &apos;coil&apos;"),
-            std::string::npos);
+  EXPECT_NE(svg.find("R1 &lt;drift&gt; &amp; &quot;hot&quot; &apos;coil&apos;"), std::string::npos);
   EXPECT_NE(svg.find(">a&lt;b</text>"), std::string::npos);
   EXPECT_EQ(svg.find("<drift>"), std::string::npos);
   EXPECT_TRUE(well_formed(svg, "escaped"));
@@ -161,9 +160,9 @@ TEST(AtomicFile, WritesCreatesDirectoriesAndReplaces) {
   std::ifstream in(path);
   std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(content, "second");
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(path.parent_path()),
-                          std::filesystem::directory_iterator()),
-            1);  // no temporary left behind
+  EXPECT_EQ(
+      std::distance(std::filesystem::directory_iterator(path.parent_path()), std::filesystem::directory_iterator()),
+      1);  // no temporary left behind
   EXPECT_THROW(write_file_atomically(path / "below-a-file", "x"), Error);
   std::filesystem::remove_all(directory);
 }

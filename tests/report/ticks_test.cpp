@@ -17,9 +17,8 @@ TEST(LogTicks, DecadesRoundedOutwardsAndMinorTicksAtTwoToNine) {
   const Ticks ticks = log_ticks(3.0, 2500.0);
   EXPECT_DOUBLE_EQ(ticks.range.lo, 1.0);
   EXPECT_DOUBLE_EQ(ticks.range.hi, 1e4);
-  EXPECT_THAT(ticks.major, ElementsAre(DoubleNear(1, 1e-12), DoubleNear(10, 1e-11),
-                                       DoubleNear(100, 1e-10), DoubleNear(1000, 1e-9),
-                                       DoubleNear(1e4, 1e-8)));
+  EXPECT_THAT(ticks.major, ElementsAre(DoubleNear(1, 1e-12), DoubleNear(10, 1e-11), DoubleNear(100, 1e-10),
+                                       DoubleNear(1000, 1e-9), DoubleNear(1e4, 1e-8)));
   EXPECT_THAT(ticks.labels, ElementsAre("1", "10", "100", "1000", "10000"));
   ASSERT_EQ(ticks.minor.size(), 4u * 8u);  // 2..9 in each of the four decades
   EXPECT_NEAR(ticks.minor.front(), 2.0, 1e-12);
@@ -61,8 +60,7 @@ TEST(LinearTicks, NiceStepsCoverTheData) {
 
 TEST(LinearTicks, SmallStepsGetDecimalsAndNoNegativeZero) {
   const Ticks ticks = linear_ticks(-0.26, 0.31);
-  EXPECT_THAT(ticks.labels, ElementsAre("-0.3", "-0.2", "-0.1", "0.0", "0.1", "0.2", "0.3",
-                                        "0.4"));
+  EXPECT_THAT(ticks.labels, ElementsAre("-0.3", "-0.2", "-0.1", "0.0", "0.1", "0.2", "0.3", "0.4"));
 }
 
 TEST(LinearTicks, ZeroWidthSpanIsWidened) {

@@ -93,9 +93,7 @@ void put(ambid_StateSpace& out, const StateSpace& in) {
   put(out.d, in.d);
 }
 
-std::vector<double> doubles(const dds_sequence_double& in) {
-  return {in._buffer, in._buffer + in._length};
-}
+std::vector<double> doubles(const dds_sequence_double& in) { return {in._buffer, in._buffer + in._length}; }
 
 std::vector<std::string> names(const dds_sequence_ambid_Name& in) {
   std::vector<std::string> out;
@@ -124,9 +122,7 @@ std::vector<Estimate> estimates(const dds_sequence_ambid_Estimate& in) {
 
 Matrix matrix(const ambid_Matrix& in) { return {in.rows, in.cols, doubles(in.values)}; }
 
-StateSpace state_space(const ambid_StateSpace& in) {
-  return {matrix(in.a), matrix(in.b), matrix(in.c), matrix(in.d)};
-}
+StateSpace state_space(const ambid_StateSpace& in) { return {matrix(in.a), matrix(in.b), matrix(in.c), matrix(in.d)}; }
 
 }  // namespace
 
@@ -190,10 +186,8 @@ void to_cyclone(const PlantSourceCommand& in, ambid_PlantSourceCommand& out) {
 }
 
 PlantSourceCommand from_cyclone(const ambid_PlantSourceCommand& in) {
-  return {.plant_id = text(in.plant_id),
-          .seq = in.seq,
-          .kind = enum_cast<SourceKind>(in.kind),
-          .target = text(in.target)};
+  return {
+      .plant_id = text(in.plant_id), .seq = in.seq, .kind = enum_cast<SourceKind>(in.kind), .target = text(in.target)};
 }
 
 void to_cyclone(const PlantSourceState& in, ambid_PlantSourceState& out) {

@@ -33,8 +33,7 @@ DomainRef::DomainRef(int id, const std::string& config) : id_(id) {
   }
   const dds_entity_t handle = dds_create_domain(static_cast<dds_domainid_t>(id), config.c_str());
   if (handle < 0) {
-    throw Error("Cyclone DDS refused to create domain " + std::to_string(id) + ": " +
-                dds_strretcode(handle));
+    throw Error("Cyclone DDS refused to create domain " + std::to_string(id) + ": " + dds_strretcode(handle));
   }
   registry.emplace(id, Domain{handle, config, 1});
 }

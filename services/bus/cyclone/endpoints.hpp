@@ -24,18 +24,16 @@ template <class Message>
 class CycloneWriter final : public Writer<Message> {
  public:
   CycloneWriter(std::shared_ptr<Participant> participant, std::shared_ptr<Activity> activity)
-      : Writer<Message>(Topic<Message>::name, std::move(activity)),
-        participant_(std::move(participant)) {
+      : Writer<Message>(Topic<Message>::name, std::move(activity)), participant_(std::move(participant)) {
     const QosPtr qos = endpoint_qos(Topic<Message>::profile);
     const ListenerPtr listener(dds_create_listener(this), &dds_delete_listener);
     dds_lset_publication_matched(listener.get(), &on_publication_matched);
     dds_lset_offered_deadline_missed(listener.get(), &on_offered_deadline_missed);
     dds_lset_liveliness_lost(listener.get(), &on_liveliness_lost);
-    writer_ = dds_create_writer(participant_->handle(), participant_->topic<Message>(), qos.get(),
-                                listener.get());
+    writer_ = dds_create_writer(participant_->handle(), participant_->topic<Message>(), qos.get(), listener.get());
     if (writer_ < 0) {
-      throw Error(std::string("Cyclone DDS refused to create a writer on ") +
-                  Topic<Message>::name + ": " + dds_strretcode(writer_));
+      throw Error(std::string("Cyclone DDS refused to create a writer on ") + Topic<Message>::name + ": " +
+                  dds_strretcode(writer_));
     }
   }
   ~CycloneWriter() override { dds_delete(writer_); }
@@ -45,19 +43,14 @@ class CycloneWriter final : public Writer<Message> {
     CSample<Message> sample;
     to_cyclone(message, sample.data);
     if (const dds_return_t rc = dds_write(writer_, &sample.data); rc < 0) {
-      throw Error(std::string("Cyclone DDS failed to write on ") + Topic<Message>::name + ": " +
-                  dds_strretcode(rc));
+      throw Error(std::string("Cyclone DDS failed to write on ") + Topic<Message>::name + ": " + dds_strretcode(rc));
     }
   }
 
-  static void on_publication_matched(dds_entity_t, const dds_publication_matched_status_t s,
-                                     void* self) {
-    static_cast<CycloneWriter*>(self)->matched_changed(static_cast<int>(s.current_count),
-                                                       s.current_count_change);
+  static void on_publication_matched(dds_entity_t, const dds_publication_matched_status_t s, void* self) {
+    static_cast<CycloneWriter*>(self)->matched_changed(static_cast<int>(s.current_count), s.current_count_change);
   }
-  static void on_offered_deadline_missed(dds_entity_t,
-                                         const dds_offered_deadline_missed_status_t s,
-                                         void* self) {
+  static void on_offered_deadline_missed(dds_entity_t, const dds_offered_deadline_missed_status_t s, void* self) {
     static_cast<CycloneWriter*>(self)->deadline_missed(static_cast<int>(s.total_count));
   }
   static void on_liveliness_lost(dds_entity_t, const dds_liveliness_lost_status_t s, void* self) {
@@ -72,19 +65,17 @@ template <class Message>
 class CycloneReader final : public Reader<Message> {
  public:
   CycloneReader(std::shared_ptr<Participant> participant, std::shared_ptr<Activity> activity)
-      : Reader<Message>(Topic<Message>::name, std::move(activity)),
-        participant_(std::move(participant)) {
+      : Reader<Message>(Topic<Message>::name, std::move(activity)), participant_(std::move(participant)) {
     const QosPtr qos = endpoint_qos(Topic<Message>::profile);
     const ListenerPtr listener(dds_create_listener(this), &dds_delete_listener);
     dds_lset_data_available(listener.get(), &on_data_available);
     dds_lset_subscription_matched(listener.get(), &on_subscription_matched);
     dds_lset_requested_deadline_missed(listener.get(), &on_requested_deadline_missed);
     dds_lset_liveliness_changed(listener.get(), &on_liveliness_changed);
-    reader_ = dds_create_reader(participant_->handle(), participant_->topic<Message>(), qos.get(),
-                                listener.get());
+    reader_ = dds_create_reader(participant_->handle(), participant_->topic<Message>(), qos.get(), listener.get());
     if (reader_ < 0) {
-      throw Error(std::string("Cyclone DDS refused to create a reader on ") +
-                  Topic<Message>::name + ": " + dds_strretcode(reader_));
+      throw Error(std::string("Cyclone DDS refused to create a reader on ") + Topic<Message>::name + ": " +
+                  dds_strretcode(reader_));
     }
   }
   ~CycloneReader() override { dds_delete(reader_); }
@@ -95,8 +86,8 @@ class CycloneReader final : public Reader<Message> {
       Loan loan(reader_);  // buffers[0] null: Cyclone lends its samples
       loan.count = dds_take(reader_, loan.buffers.data(), loan.infos.data(), batch, batch);
       if (loan.count < 0) {
-        throw Error(std::string("Cyclone DDS failed to take from ") + Topic<Message>::name +
-                    ": " + dds_strretcode(loan.count));
+        throw Error(std::string("Cyclone DDS failed to take from ") + Topic<Message>::name + ": " +
+                    dds_strretcode(loan.count));
       }
       if (loan.count == 0) break;
       for (dds_return_t i = 0; i < loan.count; ++i) {
@@ -126,23 +117,16 @@ class CycloneReader final : public Reader<Message> {
     dds_return_t count = 0;
   };
 
-  static void on_data_available(dds_entity_t, void* self) {
-    static_cast<CycloneReader*>(self)->data_available();
+  static void on_data_available(dds_entity_t, void* self) { static_cast<CycloneReader*>(self)->data_available(); }
+  static void on_subscription_matched(dds_entity_t, const dds_subscription_matched_status_t s, void* self) {
+    static_cast<CycloneReader*>(self)->matched_changed(static_cast<int>(s.current_count), s.current_count_change);
   }
-  static void on_subscription_matched(dds_entity_t, const dds_subscription_matched_status_t s,
-                                      void* self) {
-    static_cast<CycloneReader*>(self)->matched_changed(static_cast<int>(s.current_count),
-                                                       s.current_count_change);
-  }
-  static void on_requested_deadline_missed(dds_entity_t,
-                                           const dds_requested_deadline_missed_status_t s,
-                                           void* self) {
+  static void on_requested_deadline_missed(dds_entity_t, const dds_requested_deadline_missed_status_t s, void* self) {
     static_cast<CycloneReader*>(self)->deadline_missed(static_cast<int>(s.total_count));
   }
-  static void on_liveliness_changed(dds_entity_t, const dds_liveliness_changed_status_t s,
-                                    void* self) {
-    static_cast<CycloneReader*>(self)->liveliness_changed(
-        static_cast<int>(s.alive_count), s.alive_count_change, s.not_alive_count_change);
+  static void on_liveliness_changed(dds_entity_t, const dds_liveliness_changed_status_t s, void* self) {
+    static_cast<CycloneReader*>(self)->liveliness_changed(static_cast<int>(s.alive_count), s.alive_count_change,
+                                                          s.not_alive_count_change);
   }
 
   std::shared_ptr<Participant> participant_;

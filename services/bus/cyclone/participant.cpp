@@ -24,8 +24,8 @@ Participant::Participant(int domain, std::string_view profile)
     : domain_(domain, config(profile)),
       participant_(dds_create_participant(static_cast<dds_domainid_t>(domain), nullptr, nullptr)) {
   if (participant_ < 0) {
-    throw Error("Cyclone DDS refused to create a participant on domain " +
-                std::to_string(domain) + ": " + dds_strretcode(participant_));
+    throw Error("Cyclone DDS refused to create a participant on domain " + std::to_string(domain) + ": " +
+                dds_strretcode(participant_));
   }
 }
 
@@ -36,8 +36,7 @@ dds_entity_t Participant::topic(const char* name, const dds_topic_descriptor_t* 
   if (auto it = topics_.find(name); it != topics_.end()) return it->second;
   const dds_entity_t topic = dds_create_topic(participant_, descriptor, name, nullptr, nullptr);
   if (topic < 0) {
-    throw Error(std::string("Cyclone DDS refused to create the topic ") + name + ": " +
-                dds_strretcode(topic));
+    throw Error(std::string("Cyclone DDS refused to create the topic ") + name + ": " + dds_strretcode(topic));
   }
   topics_.emplace(name, topic);
   return topic;

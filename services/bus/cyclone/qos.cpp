@@ -3,9 +3,7 @@
 namespace ambid::bus::cyclone {
 namespace {
 
-dds_duration_t duration(std::chrono::milliseconds ms) {
-  return ms.count() == 0 ? DDS_INFINITY : DDS_MSECS(ms.count());
-}
+dds_duration_t duration(std::chrono::milliseconds ms) { return ms.count() == 0 ? DDS_INFINITY : DDS_MSECS(ms.count()); }
 
 }  // namespace
 
@@ -20,8 +18,8 @@ QosPtr endpoint_qos(Profile profile) {
     dds_qset_durability(qos, DDS_DURABILITY_TRANSIENT_LOCAL);
     // Cyclone keeps durability_service.history (default KEEP_LAST 1) for late joiners, not the
     // writer history (pitfall P5).
-    dds_qset_durability_service(qos, 0, DDS_HISTORY_KEEP_LAST, q.depth, max_instances * q.depth,
-                                max_instances, q.depth);
+    dds_qset_durability_service(qos, 0, DDS_HISTORY_KEEP_LAST, q.depth, max_instances * q.depth, max_instances,
+                                q.depth);
   } else {
     dds_qset_durability(qos, DDS_DURABILITY_VOLATILE);
   }

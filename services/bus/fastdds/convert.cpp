@@ -238,8 +238,7 @@ FrequencyResponse from_fast(const ::ambid::FrequencyResponse& in) {
   std::vector<SensitivityPeak> peaks;
   peaks.reserve(in.peaks().size());
   for (const auto& p : in.peaks()) {
-    peaks.push_back({p.output().to_string(), p.frequency(), p.magnitude(),
-                     enum_cast<IsoZone>(p.zone())});
+    peaks.push_back({p.output().to_string(), p.frequency(), p.magnitude(), enum_cast<IsoZone>(p.zone())});
   }
   return {.plant_id = in.plant_id().to_string(),
           .kind = in.kind().to_string(),

@@ -23,15 +23,13 @@
 namespace ambid::bus::fastdds {
 
 template <class Message>
-class FastWriter final : public Writer<Message>,
-                         private eprosima::fastdds::dds::DataWriterListener {
+class FastWriter final : public Writer<Message>, private eprosima::fastdds::dds::DataWriterListener {
  public:
   FastWriter(std::shared_ptr<Participant> participant, std::shared_ptr<Activity> activity)
-      : Writer<Message>(Topic<Message>::name, std::move(activity)),
-        participant_(std::move(participant)) {
-    writer_ = participant_->publisher()->create_datawriter(
-        participant_->topic<Message>(), writer_qos(Topic<Message>::profile), this,
-        eprosima::fastdds::dds::StatusMask::all());
+      : Writer<Message>(Topic<Message>::name, std::move(activity)), participant_(std::move(participant)) {
+    writer_ = participant_->publisher()->create_datawriter(participant_->topic<Message>(),
+                                                           writer_qos(Topic<Message>::profile), this,
+                                                           eprosima::fastdds::dds::StatusMask::all());
     if (writer_ == nullptr) {
       throw Error(std::string("Fast DDS refused to create a writer on ") + Topic<Message>::name);
     }
@@ -51,9 +49,8 @@ class FastWriter final : public Writer<Message>,
                               const eprosima::fastdds::dds::PublicationMatchedStatus& s) override {
     this->matched_changed(s.current_count, s.current_count_change);
   }
-  void on_offered_deadline_missed(
-      eprosima::fastdds::dds::DataWriter*,
-      const eprosima::fastdds::dds::OfferedDeadlineMissedStatus& s) override {
+  void on_offered_deadline_missed(eprosima::fastdds::dds::DataWriter*,
+                                  const eprosima::fastdds::dds::OfferedDeadlineMissedStatus& s) override {
     this->deadline_missed(s.total_count);
   }
   void on_liveliness_lost(eprosima::fastdds::dds::DataWriter*,
@@ -66,15 +63,13 @@ class FastWriter final : public Writer<Message>,
 };
 
 template <class Message>
-class FastReader final : public Reader<Message>,
-                         private eprosima::fastdds::dds::DataReaderListener {
+class FastReader final : public Reader<Message>, private eprosima::fastdds::dds::DataReaderListener {
  public:
   FastReader(std::shared_ptr<Participant> participant, std::shared_ptr<Activity> activity)
-      : Reader<Message>(Topic<Message>::name, std::move(activity)),
-        participant_(std::move(participant)) {
-    reader_ = participant_->subscriber()->create_datareader(
-        participant_->topic<Message>(), reader_qos(Topic<Message>::profile), this,
-        eprosima::fastdds::dds::StatusMask::all());
+      : Reader<Message>(Topic<Message>::name, std::move(activity)), participant_(std::move(participant)) {
+    reader_ = participant_->subscriber()->create_datareader(participant_->topic<Message>(),
+                                                            reader_qos(Topic<Message>::profile), this,
+                                                            eprosima::fastdds::dds::StatusMask::all());
     if (reader_ == nullptr) {
       throw Error(std::string("Fast DDS refused to create a reader on ") + Topic<Message>::name);
     }
@@ -92,17 +87,13 @@ class FastReader final : public Reader<Message>,
   }
 
  private:
-  void on_data_available(eprosima::fastdds::dds::DataReader*) override {
-    this->data_available();
-  }
-  void on_subscription_matched(
-      eprosima::fastdds::dds::DataReader*,
-      const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
+  void on_data_available(eprosima::fastdds::dds::DataReader*) override { this->data_available(); }
+  void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
+                               const eprosima::fastdds::dds::SubscriptionMatchedStatus& s) override {
     this->matched_changed(s.current_count, s.current_count_change);
   }
-  void on_requested_deadline_missed(
-      eprosima::fastdds::dds::DataReader*,
-      const eprosima::fastdds::dds::RequestedDeadlineMissedStatus& s) override {
+  void on_requested_deadline_missed(eprosima::fastdds::dds::DataReader*,
+                                    const eprosima::fastdds::dds::RequestedDeadlineMissedStatus& s) override {
     this->deadline_missed(s.total_count);
   }
   void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,

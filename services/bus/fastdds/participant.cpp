@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <memory>
 
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
 #include "core/error.hpp"
 #include "services/bus/bus.hpp"
@@ -88,16 +88,17 @@ dds::DomainParticipantQos file_qos(const std::string& path) {
 Participant::Participant(int domain, std::string_view profile) {
   // It silently makes this participant a discovery-server client, which Cyclone cannot reach.
   if (std::getenv("ROS_DISCOVERY_SERVER") != nullptr) {
-    throw Error("ROS_DISCOVERY_SERVER is set: Fast DDS would become a discovery-server client "
-                "that Cyclone DDS participants cannot discover; unset it");
+    throw Error(
+        "ROS_DISCOVERY_SERVER is set: Fast DDS would become a discovery-server client "
+        "that Cyclone DDS participants cannot discover; unset it");
   }
   const dds::DomainParticipantQos qos =
       profile == loopback_profile ? loopback_qos(domain) : file_qos(std::string(profile));
   auto* factory = dds::DomainParticipantFactory::get_instance();
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(domain), qos);
   if (participant_ == nullptr) {
-    throw Error("Fast DDS refused to create a participant on domain " + std::to_string(domain) +
-                " with profile " + std::string(profile));
+    throw Error("Fast DDS refused to create a participant on domain " + std::to_string(domain) + " with profile " +
+                std::string(profile));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

@@ -32,14 +32,12 @@ class Participant {
   // The topic that carries Message; its type is registered and the topic created on first use.
   template <class Message>
   eprosima::fastdds::dds::Topic* topic() {
-    return topic(Topic<Message>::name, [] {
-      return eprosima::fastdds::dds::TypeSupport(new typename Generated<Message>::PubSub());
-    });
+    return topic(Topic<Message>::name,
+                 [] { return eprosima::fastdds::dds::TypeSupport(new typename Generated<Message>::PubSub()); });
   }
 
  private:
-  eprosima::fastdds::dds::Topic* topic(const char* name,
-                                       eprosima::fastdds::dds::TypeSupport (*make_type)());
+  eprosima::fastdds::dds::Topic* topic(const char* name, eprosima::fastdds::dds::TypeSupport (*make_type)());
 
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;

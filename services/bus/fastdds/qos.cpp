@@ -10,8 +10,7 @@ using eprosima::fastrtps::Duration_t;
 
 Duration_t duration(std::chrono::milliseconds ms) {
   if (ms.count() == 0) return eprosima::fastrtps::c_TimeInfinite;
-  return {static_cast<std::int32_t>(ms.count() / 1000),
-          static_cast<std::uint32_t>(ms.count() % 1000) * 1000000u};
+  return {static_cast<std::int32_t>(ms.count() / 1000), static_cast<std::uint32_t>(ms.count() % 1000) * 1000000u};
 }
 
 // What writers and readers share.
@@ -19,8 +18,7 @@ template <class EndpointQos>
 void apply(const Qos& q, EndpointQos& e) {
   e.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
   e.reliability().max_blocking_time = duration(max_blocking_time);
-  e.durability().kind =
-      q.transient_local ? dds::TRANSIENT_LOCAL_DURABILITY_QOS : dds::VOLATILE_DURABILITY_QOS;
+  e.durability().kind = q.transient_local ? dds::TRANSIENT_LOCAL_DURABILITY_QOS : dds::VOLATILE_DURABILITY_QOS;
   e.history().kind = dds::KEEP_LAST_HISTORY_QOS;
   e.history().depth = q.depth;
   e.resource_limits().max_instances = max_instances;
