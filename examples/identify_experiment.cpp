@@ -1,6 +1,6 @@
 // identifier: identify the open-loop plant of a closed-loop experiment file and print its
 // physical parameters with their one-sigma uncertainty.
-//   identify_experiment FILE [METHOD]     (METHOD default closed-loop)
+//   identify_experiment FILE [METHOD]     (METHOD default pem: consistent under sensor noise)
 #include <iostream>
 
 #include "core/error.hpp"
@@ -13,7 +13,7 @@ int main(int argc, char** argv) try {
     return 2;
   }
   ambid::ident::IdentifyOptions options;
-  options.method = argc == 3 ? argv[2] : "closed-loop";
+  options.method = argc == 3 ? argv[2] : "pem";
   options.skip_samples = 1000;  // the settling transient of the first 0.1 s
   const ambid::Model model = ambid::ident::identify_experiment(ambid::read_experiment(argv[1]).experiment, options);
   for (const auto& [name, value] : model.physical) {

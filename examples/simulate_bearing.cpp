@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   options.true_parameters["R1"] = 21.0;  // nominal 17.5 ohm; the sidecar keeps the nominal value
   options.position_noise = 1e-7;         // 0.1 um
   options.current_noise = 1e-3;          // 1 mA
+  options.amplitude = 1.0;               // PRBS level at each amplifier input (V), of 8.75 V
   const ambid::Experiment experiment = ambid::sim::simulate_scenario(options);
   ambid::write_experiment(experiment, argv[1]);
   std::cout << experiment.samples() << " samples written to " << argv[1] << ".csv/.json\n";

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/observer_controller.hpp"
@@ -135,8 +136,8 @@ TEST(Amb1dofDeadbeat, UncertaintyPropagation) {
   // least-squares covariance of [A B]: the spread agrees within 25 % (sampling error ~7 %).
   const DiscreteSystem& d = id.realization.system;
   const Eigen::MatrixXd& S = id.realization.parameter_covariance;
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(S);
-  const Eigen::MatrixXd root = eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).cwiseSqrt().asDiagonal();
+  const linalg::Svd eig = linalg::svd(S);  // S is symmetric positive semi-definite: U diag(s) U'
+  const Eigen::MatrixXd root = eig.U * eig.S.cwiseSqrt().asDiagonal();
   Eigen::VectorXd p0(24);
   for (Eigen::Index i = 0; i < 4; ++i) {
     p0.segment(i * 4, 4) = d.A.row(i).transpose();

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
@@ -14,10 +15,7 @@ namespace {
 using testing::random_matrix;
 
 // Independent reference: the minimum-norm solution by a full SVD of Phi itself.
-Eigen::MatrixXd svd_solution(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& z) {
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi, Eigen::ComputeThinU | Eigen::ComputeThinV);
-  return svd.solve(z);
-}
+Eigen::MatrixXd svd_solution(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& z) { return linalg::svd_solve(phi, z); }
 
 TEST(LeastSquares, ExactDataGiveTheTrueParameters) {
   std::mt19937_64 rng(11);
@@ -52,9 +50,8 @@ TEST(LeastSquares, StreamingBlocksEqualOneShotAndTheSvdSolution) {
     EXPECT_LT((s.residual_gram - gram).norm() / gram.norm(), 1e-11);
     EXPECT_LT((s.residual_covariance - gram / 992.0).norm() / gram.norm(), 1e-11);
     // (Phi'Phi)^-1 from Phi's own SVD: V S^-2 V'.
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi, Eigen::ComputeThinV);
-    const Eigen::MatrixXd ig =
-        svd.matrixV() * svd.singularValues().cwiseAbs2().cwiseInverse().asDiagonal() * svd.matrixV().transpose();
+    const linalg::Svd svd = linalg::svd(phi);
+    const Eigen::MatrixXd ig = svd.V * svd.S.cwiseAbs2().cwiseInverse().asDiagonal() * svd.V.transpose();
     EXPECT_LT((s.inverse_gram - ig).norm() / ig.norm(), 1e-11);
     EXPECT_NEAR(s.covariance(2, 1, 4, 0), s.residual_covariance(1, 0) * ig(2, 4), 1e-11 * std::abs(ig(2, 4)) + 1e-18);
   }
@@ -73,7 +70,7 @@ TEST(LeastSquares, ConditionNumberIsIndependentOfRegressorUnits) {
   // The singular values of the equilibrated factor are those of Phi with unit columns.
   Eigen::MatrixXd unit = phi;
   for (Eigen::Index j = 0; j < 5; ++j) unit.col(j).normalize();
-  const Eigen::VectorXd sv = unit.jacobiSvd().singularValues();
+  const Eigen::VectorXd sv = linalg::singular_values(unit);
   EXPECT_LT((b.singular_values - sv).norm() / sv.norm(), 1e-12);
   EXPECT_NEAR(b.column_norms(3), phi.col(3).norm(), 1e-12 * phi.col(3).norm());
 }
@@ -94,10 +91,10 @@ TEST(LeastSquares, TikhonovMatchesTheAugmentedProblem) {
   const Eigen::MatrixXd E = z - phi * ref;  // residual of the data rows only
   EXPECT_LT((s.residual_gram - E.transpose() * E).norm() / (E.transpose() * E).norm(), 1e-11);
   // Sandwich covariance (Phi'Phi + lambda I)^-1 Phi'Phi (Phi'Phi + lambda I)^-1, built from the SVD.
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(phi, Eigen::ComputeThinV);
-  const Eigen::VectorXd s2 = svd.singularValues().cwiseAbs2();
+  const linalg::Svd svd = linalg::svd(phi);
+  const Eigen::VectorXd s2 = svd.S.cwiseAbs2();
   const Eigen::VectorXd f = s2.cwiseQuotient((s2.array() + lambda).square().matrix());
-  const Eigen::MatrixXd cov = svd.matrixV() * f.asDiagonal() * svd.matrixV().transpose();
+  const Eigen::MatrixXd cov = svd.V * f.asDiagonal() * svd.V.transpose();
   EXPECT_LT((s.inverse_gram - cov).norm() / cov.norm(), 1e-11);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
@@ -25,7 +26,7 @@ TEST(PhysicalCoordinates, SecondOrderFormRecoversStiffnessDampingAndInput) {
   Dd << 2.0, 0.3, 0.0, 0.3, 5.0, 0.1, 0.0, 0.1, 1.0;
   const Eigen::MatrixXd G = random_matrix(h, 2, rng);
   const Eigen::MatrixXd C1 = Eigen::MatrixXd::Identity(h, h) * 50.0 + random_matrix(h, h, rng);
-  const Eigen::MatrixXd Minv = M.inverse();
+  const Eigen::MatrixXd Minv = linalg::inverse(M);
   ContinuousSystem phys;
   phys.A = Eigen::MatrixXd::Zero(2 * h, 2 * h);
   phys.A.topRightCorner(h, h).setIdentity();
@@ -38,7 +39,7 @@ TEST(PhysicalCoordinates, SecondOrderFormRecoversStiffnessDampingAndInput) {
   phys.D = Eigen::MatrixXd::Zero(h, 2);
   DiscreteSystem d = c2d_zoh(phys, 1e-3);
   const Eigen::MatrixXd T = Eigen::MatrixXd::Identity(2 * h, 2 * h) + 0.5 * random_matrix(2 * h, 2 * h, rng);
-  const Eigen::MatrixXd Ti = T.inverse();
+  const Eigen::MatrixXd Ti = linalg::inverse(T);
   d.A = Ti * d.A * T;
   d.B = Ti * d.B;
   d.C = d.C * T;
@@ -54,7 +55,7 @@ TEST(PhysicalCoordinates, SecondOrderFormRecoversStiffnessDampingAndInput) {
   EXPECT_LT((f.system.C.leftCols(h) - Eigen::MatrixXd::Identity(h, h)).norm(), 1e-10);
   EXPECT_LT(f.system.C.rightCols(h).norm(), 1e-10);
   // The unstable mode is still there.
-  EXPECT_GT(f.system.A.eigenvalues().real().maxCoeff(), 10.0);
+  EXPECT_GT(linalg::eigenvalues(f.system.A).real().maxCoeff(), 10.0);
 }
 
 TEST(PhysicalCoordinates, WrongShapesAndSingularMapsAreErrors) {
@@ -83,8 +84,8 @@ TEST(PhysicalCoordinates, MeasuredCoordinatesWithAKnownSquareC) {
   phys.sample_time = 0.01;
   const Eigen::MatrixXd T = random_matrix(3, 3, rng) + 2.0 * Eigen::MatrixXd::Identity(3, 3);
   DiscreteSystem other = phys;
-  other.A = T.inverse() * phys.A * T;
-  other.B = T.inverse() * phys.B;
+  other.A = linalg::inverse(T) * phys.A * T;
+  other.B = linalg::inverse(T) * phys.B;
   other.C = phys.C * T;
   const DiscreteSystem back = to_measured_coordinates(other, phys.C);
   EXPECT_LT((back.A - phys.A).norm(), 1e-12);

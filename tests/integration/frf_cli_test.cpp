@@ -32,7 +32,8 @@ Eigen::MatrixXcd sampled_linear_plant(double f, double T) {
   const std::complex<double> z = std::exp(std::complex<double>(0.0, 2.0 * std::numbers::pi * f * T));
   const Eigen::MatrixXcd resolvent =
       z * Eigen::MatrixXcd::Identity(d.A.rows(), d.A.cols()) - d.A.cast<std::complex<double>>();
-  return d.C.cast<std::complex<double>>() * linalg::lu_solve(resolvent, d.B.cast<std::complex<double>>()).x +
+  return d.C.cast<std::complex<double>>() *
+             linalg::lu_solve(resolvent, Eigen::MatrixXcd(d.B.cast<std::complex<double>>())).x +
          d.D.cast<std::complex<double>>();
 }
 

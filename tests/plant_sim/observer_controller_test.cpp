@@ -109,7 +109,7 @@ TEST(ObserverController, IntegralActionRemovesStaticPositionError) {
   const DiscreteSystem cl = linear_closed_loop(c2d_zoh(amb_model("R1", 1.2), kT), kInputs, kOutputs, c);
   // Static gain from a constant input offset r to [y; u]: the x row must vanish.
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(cl.states(), cl.states());
-  const Eigen::MatrixXd dc = cl.C * linalg::lu_solve(I - cl.A, cl.B).x + cl.D;
+  const Eigen::MatrixXd dc = cl.C * linalg::lu_solve(Eigen::MatrixXd(I - cl.A), cl.B).x + cl.D;
   EXPECT_LT(dc.row(0).norm(), 1e-12);
   EXPECT_GT(dc.row(1).norm(), 1e-3);  // the currents do move
 }

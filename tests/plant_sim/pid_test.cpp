@@ -107,11 +107,10 @@ TEST(LeadLag, CascadeFrequencyResponseIsTheWarpedContinuousOne) {
     const std::complex<double> s = 2.0 / T * (z - 1.0) / (z + 1.0);
     std::complex<double> expected = -gain;  // e = -y
     for (const auto& sec : sections) expected *= (sec.lead_time_constant * s + 1.0) / (sec.lag_time_constant * s + 1.0);
-    const Eigen::MatrixXcd zI = z * Eigen::MatrixXcd::Identity(3, 3);
+    const Eigen::MatrixXcd resolvent = z * Eigen::MatrixXcd::Identity(3, 3) - c.A.cast<std::complex<double>>();
+    const Eigen::MatrixXcd input = c.B.cast<std::complex<double>>();
     const Eigen::MatrixXcd H =
-        c.C.cast<std::complex<double>>() *
-            linalg::lu_solve(zI - c.A.cast<std::complex<double>>(), c.B.cast<std::complex<double>>()).x +
-        c.D.cast<std::complex<double>>();
+        c.C.cast<std::complex<double>>() * linalg::lu_solve(resolvent, input).x + c.D.cast<std::complex<double>>();
     EXPECT_LT(std::abs(H(0, 0) - expected), 1e-10 * std::abs(expected)) << "w = " << w;
     EXPECT_LT(std::abs(H(1, 0) + 0.5 * expected), 1e-10 * std::abs(expected)) << "w = " << w;
   }
