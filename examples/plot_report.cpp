@@ -7,7 +7,7 @@
 #include "services/report/figure.hpp"
 #include "services/report/svg.hpp"
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   if (argc != 2) {
     std::cerr << "usage: plot_report OUT.svg\n";
     return 2;
@@ -31,4 +31,7 @@ int main(int argc, char** argv) {
   figure.axes = {bode_magnitude, bode_phase};
   ambid::report::write_file_atomically(argv[1], ambid::report::render_svg(figure));
   std::cout << "wrote " << argv[1] << "\n";
+} catch (const std::exception& error) {  // ambid::Error, or a file that cannot be written
+  std::cerr << "plot_report: " << error.what() << "\n";
+  return 1;
 }

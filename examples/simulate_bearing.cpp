@@ -6,7 +6,7 @@
 #include "core/experiment_io.hpp"
 #include "plant_sim/scenario.hpp"
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   if (argc != 2) {
     std::cerr << "usage: simulate_bearing OUT_STEM\n";
     return 2;
@@ -20,4 +20,7 @@ int main(int argc, char** argv) {
   const ambid::Experiment experiment = ambid::sim::simulate_scenario(options);
   ambid::write_experiment(experiment, argv[1]);
   std::cout << experiment.samples() << " samples written to " << argv[1] << ".csv/.json\n";
+} catch (const std::exception& error) {  // ambid::Error, or a file that cannot be written
+  std::cerr << "simulate_bearing: " << error.what() << "\n";
+  return 1;
 }
