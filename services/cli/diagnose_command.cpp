@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -29,6 +28,7 @@
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "core/json_text.hpp"
 #include "core/model_file.hpp"
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/fault_signatures.hpp"
@@ -65,13 +65,11 @@ struct Input {
 
 bool is_model_file(const std::filesystem::path& path) {
   if (path.extension() != ".json") return false;
-  std::ifstream in(path);
-  if (!in) throw Error(path.string() + ": cannot open");
   nlohmann::json j;
   try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string() + ": not valid JSON: " + e.what());
+    j = parse_json_text(read_json_file(path));
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
   }
   return j.is_object() && j.contains("format") && j["format"] == kModelFormat;
 }
