@@ -133,9 +133,18 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult rig = stack.ambid("source set rig localhost:5000");
   EXPECT_EQ(rig.status, 1) << rig.output;
   EXPECT_THAT(rig.output, HasSubstr("'localhost' is not a numeric IPv4 address"));
+  // A directory and a scenario whose loop diverges (issue 18): refused with the reason before
+  // anything changes, never the end of the daemon.
+  const CommandResult directory = stack.ambid("source set sim " + stack.dir().string());
+  EXPECT_EQ(directory.status, 1) << directory.output;
+  EXPECT_THAT(directory.output, HasSubstr("Is a directory"));
+  std::ofstream(stack.dir() / "diverging.json") << R"({"name": "diverging", "amplitude": 1e4, "duration": 0.5})";
+  const CommandResult diverging = stack.ambid("source set sim " + (stack.dir() / "diverging.json").string());
+  EXPECT_EQ(diverging.status, 1) << diverging.output;
+  EXPECT_THAT(diverging.output, HasSubstr("refused the source"));
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
-  EXPECT_THAT(status.output, HasSubstr("rejected 2"));
+  EXPECT_THAT(status.output, HasSubstr("rejected 4"));
 }
 
 // The frf daemon runs a multisine experiment through the plant daemon. The plant is open-loop
