@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/experiment_file.hpp"
 #include "core/experiment_io.hpp"
 #include "core/json_text.hpp"
 #include "core/model_file.hpp"
@@ -37,8 +38,8 @@
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
-#include "services/report/atomic_file.hpp"
 #include "services/report/figure.hpp"
+#include "services/report/output_lock.hpp"
 #include "services/report/svg.hpp"
 
 namespace ambid::cli {
@@ -178,8 +179,13 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
   return s.str();
 }
 
-void write_trend_plots(const std::filesystem::path& dir, const std::vector<Input>& inputs, std::size_t baseline_windows,
-                       const diag::OfflineDiagnosis& d, double error_fraction) {
+// trend_PARAMETER.svg per parameter: (path, SVG text).
+std::vector<std::pair<std::filesystem::path, std::string>> trend_plots(const std::filesystem::path& dir,
+                                                                       const std::vector<Input>& inputs,
+                                                                       std::size_t baseline_windows,
+                                                                       const diag::OfflineDiagnosis& d,
+                                                                       double error_fraction) {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
   for (const auto& [key, b] : d.baselines) {
     std::vector<double> tb, vb, tm, vm;
     std::size_t n = 0;
@@ -203,8 +209,13 @@ void write_trend_plots(const std::filesystem::path& dir, const std::vector<Input
     figure.title = key.first + ": " + key.second + " (" + std::string(diag::to_string(d.final_levels.at(key))) + ")";
     figure.height = 400.0;
     figure.axes = {axes};
-    report::write_file_atomically(dir / ("trend_" + key.second + ".svg"), report::render_svg(figure));
+    files.emplace_back(dir / ("trend_" + key.second + ".svg"), report::render_svg(figure));
   }
+  return files;
+}
+
+void remove_store(const std::filesystem::path& store) {
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(store.string() + suffix);
 }
 
 void run(const DiagnoseArguments& a) {
@@ -232,7 +243,7 @@ void run(const DiagnoseArguments& a) {
                 " window(s); the baseline needs at least " + std::to_string(diag::kMinLearningWindows) +
                 " (a shorter --window or a larger --baseline)");
   const std::filesystem::path dir(a.out);
-  std::filesystem::create_directories(dir);
+  const report::OutputLock lock(dir);
   diag::EngineConfig config;
   // Fault signatures of the loop the records came from (the first experiment's plant and
   // controller); model files alone get those of the loop `ambid sim` runs.
@@ -245,11 +256,30 @@ void run(const DiagnoseArguments& a) {
     }
     break;
   }
-  const diag::OfflineDiagnosis d = diag::diagnose_offline(windows, baseline_windows, dir / "trends.sqlite", config);
-  report::write_file_atomically(dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n");
+  // The new trend store is built beside the old one and every output is complete before any
+  // replaces its predecessor: a failed run (a full disk) leaves the previous run's files as they were.
+  const std::filesystem::path store = dir / "trends.sqlite", fresh = dir / ".trends.sqlite.new";
+  diag::OfflineDiagnosis d;
+  try {
+    d = diag::diagnose_offline(windows, baseline_windows, fresh, config);
+  } catch (...) {
+    remove_store(fresh);
+    throw;
+  }
   const std::string summary = summary_text(a, inputs, baseline_windows, d);
-  report::write_file_atomically(dir / "summary.txt", summary);
-  write_trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction);
+  std::vector<std::pair<std::filesystem::path, std::string>> files = {
+      {dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n"},
+      {dir / "summary.txt", summary}};
+  for (auto& plot : trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction))
+    files.push_back(std::move(plot));
+  try {
+    write_files_atomically(files);
+  } catch (...) {
+    remove_store(fresh);
+    throw;
+  }
+  remove_store(store);  // with its journal files, which must not be applied to the new store
+  std::filesystem::rename(fresh, store);
   std::cout << summary << "wrote " << (dir / "diagnosis.json").string()
             << ", summary.txt, trend_*.svg, trends.sqlite\n";
 }

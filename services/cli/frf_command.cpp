@@ -14,6 +14,7 @@
 #include "services/cli/frf_output.hpp"
 #include "services/report/atomic_file.hpp"
 #include "services/report/format.hpp"
+#include "services/report/output_lock.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -88,6 +89,7 @@ void add_frf_command(CLI::App& app) {
   frf->add_option("--confidence", o.confidence, "confidence of the noise bounds")->capture_default_str();
   frf->add_flag("--no-fit", args->no_fit, "skip the rational fits");
   frf->callback([args] {
+    const report::OutputLock lock(args->out);
     ReadResult read = read_experiment(args->experiment);
     for (const std::string& w : read.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
     const Experiment& e = read.experiment;
@@ -99,9 +101,11 @@ void add_frf_command(CLI::App& app) {
     } catch (const InsufficientData& error) {  // say which file cannot support an FRF
       throw InsufficientData(args->experiment + ": " + error.what());
     }
+    // frf.json is rendered before the plots are written and written after them: a failure
+    // leaves no new frf.json beside the plots.
+    const std::string values = frf_json(r, e, args->experiment, args->options).dump(1) + "\n";
     const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
-    report::write_file_atomically(std::filesystem::path(args->out) / "frf.json",
-                                  frf_json(r, e, args->experiment, args->options).dump(1) + "\n");
+    report::write_file_atomically(std::filesystem::path(args->out) / "frf.json", values);
     print_summary(r, args->experiment, args->out, plots.size(), fit_band_top_hz(e, args->options));
   });
 }
