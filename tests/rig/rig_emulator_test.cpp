@@ -27,7 +27,8 @@ class RunningEmulator {
     o.max_amplitude = 1.0;
     o.lease = lease;
     thread_ = std::thread([this, o] {
-      run_emulator(o, [this] { return running_.load(); }, [this](const std::string& line) { log(line); });
+      run_emulator(
+          o, [this] { return running_.load(); }, [this](const std::string& line) { log(line); });
     });
     const auto end = std::chrono::steady_clock::now() + 30s;  // the first record is simulated first
     while (std::chrono::steady_clock::now() < end && !endpoint_) std::this_thread::sleep_for(10ms);
