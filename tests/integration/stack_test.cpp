@@ -145,6 +145,11 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 4"));
+  // Only the plant runs: the stack's other roles are listed as lost (issue 18).
+  EXPECT_EQ(status.status, 4) << status.output;
+  EXPECT_THAT(status.output, HasSubstr("identifier (expected): LOST"));
+  EXPECT_THAT(status.output, HasSubstr("diagnostics (expected): LOST"));
+  EXPECT_EQ(stack.ambid("status --wait 2 --expect plant").status, 0);
 }
 
 // The frf daemon runs a multisine experiment through the plant daemon. The plant is open-loop
