@@ -12,6 +12,7 @@
 #include "services/convert/identified_model.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/plant_time.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -64,7 +65,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     }
   };
   diag::Source source = diag::Source::sim;
-  std::optional<double> last_time;  // plant time of the last model processed
+  PlantTime plant_time;
   auto last_model = std::chrono::steady_clock::now();
   bool stale = false;
   while (runtime.running()) {
@@ -74,10 +75,18 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
-      if (last_time && m.time <= *last_time) continue;  // already processed (a late-joiner replay)
+      const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
+      if (!at) continue;  // already processed (a late-joiner replay)
+      if (at->after_restart) {
+        const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +
+                                    " s continues the history at " + std::to_string(at->time) + " s";
+        runtime.log(message);
+        runtime.set_health(bus::AlertLevel::ok, message);
+      }
       try {
-        publish(engine.process(convert::estimate_window(m, source)));
-        last_time = m.time;
+        diag::EstimateWindow window = convert::estimate_window(m, source);
+        window.time = at->time;
+        publish(engine.process(window));
         last_model = std::chrono::steady_clock::now();
         stale = false;
       } catch (const Error& e) {
@@ -88,9 +97,9 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     bool silent = seconds_since(last_model) > config.silence;
     for (const bus::StatusEvent& e : models->events())
       silent = silent || e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched;
-    if (silent && last_time && !stale) {
-      // The engine's clock is the plant's: the source went silent after *last_time.
-      publish(engine.check_stale(std::nextafter(*last_time + config.engine.policy.stale_timeout, INFINITY)));
+    if (silent && plant_time.last() && !stale) {
+      // The engine's clock is the plant's: the source went silent after the last model.
+      publish(engine.check_stale(std::nextafter(*plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
       stale = true;
     }
   }

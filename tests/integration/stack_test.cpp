@@ -123,6 +123,28 @@ TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   EXPECT_NEAR(sum / double(after.size() - before.size()), 17.5, 0.025 * 17.5);
 }
 
+// Issue 18: a restarted plant daemon starts its clock at 0 again. The diagnostics daemon must
+// continue the history at once (it used to discard every model until the new plant time
+// passed the old maximum: minutes of a blind service at real time).
+TEST(Stack, APlantRestartContinuesTheHistory) {
+  Stack stack("stack_plant_restart", 187);
+  start_all(stack);
+  std::this_thread::sleep_for(std::chrono::seconds(8));  // ~80 s of plant time, baseline learned
+  const auto before = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(before.size(), 40u) << stack.log("diagnostics");
+  stack.kill("plant");
+  stack.start("plant");
+  std::this_thread::sleep_for(std::chrono::seconds(5));  // ~50 s of new plant time, behind the old clock
+  const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  std::size_t continued = 0;
+  for (const auto& e : after) continued += e.time > before.back().time;
+  EXPECT_GT(continued, 20u) << "last time before the restart " << before.back().time << " s, after "
+                            << after.back().time << " s\n"
+                            << stack.log("diagnostics");
+  EXPECT_THAT(stack.log("diagnostics"), HasSubstr("plant restarted"));
+  for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
+}
+
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   Stack stack("stack_refusal", 174);
   stack.start("plant");
