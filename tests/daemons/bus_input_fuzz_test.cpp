@@ -26,8 +26,14 @@ constexpr int kIterations = 400;
 
 // A value that breaks something: non-finite, huge, tiny, negative zero.
 double bad_value(std::mt19937_64& random) {
-  constexpr double kValues[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                                -std::numeric_limits<double>::infinity(), 1e308, -1e308, 4.9e-324, -0.0, 0.0};
+  constexpr double kValues[] = {std::numeric_limits<double>::quiet_NaN(),
+                                std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(),
+                                1e308,
+                                -1e308,
+                                4.9e-324,
+                                -0.0,
+                                0.0};
   return kValues[std::uniform_int_distribution<std::size_t>(0, std::size(kValues) - 1)(random)];
 }
 
@@ -125,8 +131,8 @@ bus::IdentifiedModel valid_model() {
   m.plant_model = "amb1dof_voltage";
   m.method = "pem";
   m.sample_time = 1e-4;
-  m.physical = {{"R1", 17.5, 0.05}, {"R2", 17.5, 0.05}, {"kw1", 1.0, 0.003}, {"kw2", 1.0, 0.003},
-                {"kr1", 490.0, 1.5},  {"kr2", 490.0, 1.5},  {"ks", 1.4e6, 4e3}};
+  m.physical = {{"R1", 17.5, 0.05},  {"R2", 17.5, 0.05},  {"kw1", 1.0, 0.003}, {"kw2", 1.0, 0.003},
+                {"kr1", 490.0, 1.5}, {"kr2", 490.0, 1.5}, {"ks", 1.4e6, 4e3}};
   return m;
 }
 

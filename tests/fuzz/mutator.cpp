@@ -15,8 +15,8 @@ namespace {
 // Bytes and tokens that change what a JSON, CSV or frame parser does.
 constexpr std::string_view kBytes = "{}[]\",:\n\r\t\\0-+.eE9 \x00\xff\x80\xc3";
 constexpr std::array<std::string_view, 12> kTokens = {
-    "1e309", "-1e309", "nan", "NaN", "-0", "1e-320", "18446744073709551616", "\"\\u0000\"", "\xc3\x28", "[[[[", "null",
-    "\"x\":1,\"x\":2"};
+    "1e309", "-1e309",         "nan", "NaN", "-0", "1e-320", "18446744073709551616", "\"\\u0000\"", "\xc3\x28", "[[[[",
+    "null",  "\"x\":1,\"x\":2"};
 
 std::string printable(const std::string& input) {
   std::string out;
@@ -85,7 +85,8 @@ FuzzCount fuzz(const std::vector<std::string>& corpus, int iterations, std::uint
     } catch (const Error&) {
       ++count.refused;
     } catch (const std::exception& e) {
-      ADD_FAILURE() << "iteration " << i << ": " << typeid(e).name() << ": " << e.what() << "\ninput: " << printable(input);
+      ADD_FAILURE() << "iteration " << i << ": " << typeid(e).name() << ": " << e.what()
+                    << "\ninput: " << printable(input);
     }
   }
   return count;

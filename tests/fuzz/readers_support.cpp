@@ -67,8 +67,8 @@ std::string model_text() {
   m.sample_time = 1e-4;
   Eigen::MatrixXd A = Eigen::MatrixXd::Identity(4, 4) * 0.99;
   A(0, 1) = 1e-4;
-  m.discrete = {A, Eigen::MatrixXd::Constant(4, 2, 1e-3), Eigen::MatrixXd::Identity(3, 4),
-                Eigen::MatrixXd::Zero(3, 2), 1e-4};
+  m.discrete = {A, Eigen::MatrixXd::Constant(4, 2, 1e-3), Eigen::MatrixXd::Identity(3, 4), Eigen::MatrixXd::Zero(3, 2),
+                1e-4};
   m.continuous = ContinuousSystem{A * 10.0, Eigen::MatrixXd::Constant(4, 2, 10.0), Eigen::MatrixXd::Identity(3, 4),
                                   Eigen::MatrixXd::Zero(3, 2)};
   m.parameters = {{"v1", 777777.8}, {"v5", 40.79}};
@@ -104,8 +104,9 @@ std::vector<std::string> frame_corpus() {
   status.r_names = {"r1", "r2"};
   status.message = "record 3";
   std::vector<std::string> corpus;
-  for (const Payload& p : std::vector<Payload>{Hello{"gateway"}, KeepAlive{}, status, batch,
-                                              Excite{7, "prbs", 0.5, 1.0, 1000.0}, ExciteReply{7, false, "too much"}}) {
+  for (const Payload& p :
+       std::vector<Payload>{Hello{"gateway"}, KeepAlive{}, status, batch, Excite{7, "prbs", 0.5, 1.0, 1000.0},
+                            ExciteReply{7, false, "too much"}}) {
     const std::vector<std::uint8_t> bytes = encode(Frame{9, p});
     corpus.emplace_back(bytes.begin(), bytes.end());
   }
@@ -148,7 +149,8 @@ FuzzCount fuzz_rig_frame(int iterations) {
     const rig::Decoded decoded = rig::decode(bytes);  // never throws
     if (!decoded.frame) throw Error(decoded.reason);
     // What decodes is a frame the codec can write again, byte for byte.
-    if (rig::encode(*decoded.frame) != bytes) throw std::logic_error("a decoded frame does not re-encode to its datagram");
+    if (rig::encode(*decoded.frame) != bytes)
+      throw std::logic_error("a decoded frame does not re-encode to its datagram");
   });
 }
 

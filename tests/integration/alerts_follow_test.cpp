@@ -37,14 +37,14 @@ std::size_t occurrences(const std::string& text, const std::string& part) {
 
 TEST(AlertsFollow, EachAlertIsPrintedOnceAcrossAWriterReconnect) {
   Stack stack("alerts_follow", 186);
-  auto follow = std::async(std::launch::async,
-                           [&] { return stack.ambid("alerts --follow --until WARN:done --timeout 30"); });
+  auto follow =
+      std::async(std::launch::async, [&] { return stack.ambid("alerts --follow --until WARN:done --timeout 30"); });
   {
     auto b = bus::make_bus("cyclone", 186);
     auto writer = b->writer<bus::Alert>();
     writer->write(alert("R1", bus::AlertLevel::error, 12.5));
-    std::this_thread::sleep_for(3s);  // the follower has printed it
-  }  // the daemon goes away ...
+    std::this_thread::sleep_for(3s);       // the follower has printed it
+  }                                        // the daemon goes away ...
   auto b = bus::make_bus("fastdds", 186);  // ... and comes back, with its current alerts
   auto writer = b->writer<bus::Alert>();
   writer->write(alert("R1", bus::AlertLevel::error, 12.5));
