@@ -22,7 +22,7 @@ TEST(PlantTime, SkipsReplaysAndContinuesAfterARestart) {
   ASSERT_TRUE(next);
   EXPECT_FALSE(next->after_restart);
   EXPECT_DOUBLE_EQ(next->time, 120.5);
-  EXPECT_FALSE(clock.accept(0.5, 0.25));   // replays of the new epoch are skipped too
+  EXPECT_FALSE(clock.accept(0.5, 0.25));  // replays of the new epoch are skipped too
   EXPECT_FALSE(clock.accept(0.75, 0.25));
   EXPECT_DOUBLE_EQ(*clock.last(), 120.5);
 }
