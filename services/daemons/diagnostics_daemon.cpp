@@ -21,11 +21,16 @@ struct DiagnosticsConfig {
   std::string store = "ambid-trend.sqlite";
   diag::EngineConfig engine;
   double silence = 3.0;
+  diag::RetentionPolicy retention;
 };
+
+constexpr double kDay = 86400.0;
+constexpr double kRetentionPeriod = 600.0;  // plant seconds between two passes of the retention
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "diagnostics config",
-                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence"});
+                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence",
+                       "keep_windows_days", "aggregate_bucket", "keep_days"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
@@ -33,6 +38,11 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
   c.engine.policy.stale_timeout = config_value(j, "stale_timeout", c.engine.policy.stale_timeout);
   c.silence = config_value(j, "silence", c.silence);
+  // Per-window estimates for a week, then hourly aggregates for a year (README: disk use).
+  c.retention.aggregate_after = config_value(j, "keep_windows_days", 7.0) * kDay;
+  c.retention.bucket = config_value(j, "aggregate_bucket", 3600.0);
+  c.retention.max_age = config_value(j, "keep_days", 365.0) * kDay;
+  c.retention.validate();
   c.engine.validate();
   if (!(c.silence > 0)) throw Error("diagnostics config: silence must be > 0 s, got " + std::to_string(c.silence));
   return c;
@@ -66,6 +76,21 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   };
   diag::Source source = diag::Source::sim;
   PlantTime plant_time;
+  std::optional<double> last_retention;  // plant time of the last retention pass
+  auto retain = [&](double now) {
+    if (last_retention && now - *last_retention < kRetentionPeriod) return;
+    last_retention = now;
+    try {
+      const diag::RetentionReport r = store.apply_retention(config.retention, now);
+      if (r.estimates_aggregated + r.aggregates_removed + r.alerts_removed > 0)
+        runtime.log("retention: " + std::to_string(r.estimates_aggregated) + " window estimates aggregated, " +
+                    std::to_string(r.aggregates_removed) + " aggregates and " + std::to_string(r.alerts_removed) +
+                    " alerts past their age removed");
+    } catch (const Error& e) {  // a full disk: the history stays as it is, the service goes on
+      runtime.log("retention failed: " + std::string(e.what()));
+      runtime.set_health(bus::AlertLevel::warn, "trend store retention failed: " + std::string(e.what()));
+    }
+  };
   auto last_model = std::chrono::steady_clock::now();
   bool stale = false;
   while (runtime.running()) {
@@ -87,6 +112,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
         diag::EstimateWindow window = convert::estimate_window(m, source);
         window.time = at->time;
         publish(engine.process(window));
+        retain(at->time);
         last_model = std::chrono::steady_clock::now();
         stale = false;
       } catch (const Error& e) {
