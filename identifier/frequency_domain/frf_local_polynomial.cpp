@@ -24,7 +24,7 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
       throw Error("local polynomial FRF: inconsistent sizes at period position " + std::to_string(q));
   }
   const Eigen::Index D1 = o.degree + 1;
-  const Eigen::Index unknowns = (nx + P) * D1;
+  const Eigen::Index unknowns = (nx + (o.transient ? P : 0)) * D1;
   Eigen::Index R = o.half_width;
   if (R == 0)
     R = std::max<Eigen::Index>(
@@ -77,7 +77,7 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
         double p = 1.0;
         for (Eigen::Index d = 0; d < D1; ++d) {
           for (Eigen::Index s = 0; s < nx; ++s) Phi(row, s * D1 + d) = Xe[qi](a + i, s) * p;
-          Phi(row, nx * D1 + q * D1 + d) = p;
+          if (o.transient) Phi(row, nx * D1 + q * D1 + d) = p;
           p *= delta;
         }
         rhs.row(row) = Ze[qi].row(a + i);

@@ -56,7 +56,9 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
   if (o.first_sample < 0) throw Error("periodic FRF: first_sample must be >= 0, got " + std::to_string(o.first_sample));
   if (o.transient_periods < 0)
     throw Error("periodic FRF: transient_periods must be >= 0, got " + std::to_string(o.transient_periods));
-  if (o.periods_per_block < r.cols())
+  // Fewer periods per block than references: only the local polynomial method separates the
+  // references, through their different spectra on neighbouring lines (e.g. zippered grids).
+  if (o.periods_per_block < r.cols() && o.transient_model != PeriodicFrfOptions::TransientModel::local_polynomial)
     throw Error("periodic FRF: " + std::to_string(r.cols()) +
                 " references need at least as many periods per block, got " + std::to_string(o.periods_per_block));
   if (r.cols() < u.cols())
@@ -113,7 +115,7 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
     if (!(level(l) > 1e-9 * top))
       throw InsufficientData("periodic FRF: " + line_text(k, f(l)) + " carries no excitation (" +
                              std::to_string(level(l)) + " against " + std::to_string(top) + ")");
-    for (Eigen::Index b = 0; b < B; ++b) {
+    for (Eigen::Index b = 0; P >= nr && b < B; ++b) {
       const Eigen::MatrixXcd R = block_matrix(Rp, b, P, l);
       if (const double ic = inverse_condition(R); !(ic > 1e-8))
         throw InsufficientData("periodic FRF: at " + line_text(k, f(l)) + " the " + std::to_string(nr) +
