@@ -23,6 +23,11 @@ struct LocalPolynomialOptions {
   // Model the transient terms t_{q,d}. Without them (periods in steady state) the window can be
   // narrower, which lowers the interpolation error where lines are sparse next to sharp features.
   bool transient = true;
+  // Degree of a common denominator 1 + sum a_d delta^d of the local model (0: polynomial).
+  // A local rational model (after McKelvey and Guerin, "Non-parametric frequency response
+  // estimation using a local rational model", SYSID 2012) follows a pole near the window that
+  // no polynomial over the same lines can: closed-loop poles near DC under integral action.
+  int denominator_degree = 0;
 };
 
 // X[q]: lines x regressors (references), Z[q]: lines x responses, one entry per period
