@@ -58,7 +58,7 @@ struct FittedPair {
 // The periodic analysis that ran.
 struct PeriodicExcitation {
   std::string source;     // "r": detected in the record; "sidecar": its description, confirmed by r
-  std::string estimator;  // "exact lines" | "local polynomial"
+  std::string estimator;  // "exact lines" | "local polynomial" (Hadamard blocks) | "local rational" (zippered)
   Eigen::Index period_samples = 0;
   double period_s = 0.0;
   Eigen::Index first_sample = 0;       // where the first whole period starts

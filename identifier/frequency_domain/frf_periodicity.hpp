@@ -24,10 +24,10 @@ struct PeriodicityOptions {
 };
 
 struct Periodicity {
-  Eigen::Index first_sample = 0;    // start of the excited span
-  Eigen::Index span_samples = 0;    // length of the excited span
-  Eigen::Index period_samples = 0;  // 0: r does not repeat within the span
-  Eigen::Index periods = 0;         // whole periods in the span
+  Eigen::Index first_sample = 0;                 // start of the excited span
+  Eigen::Index span_samples = 0;                 // length of the excited span
+  Eigen::Index period_samples = 0;               // 0: r does not repeat within the span
+  Eigen::Index periods = 0;                      // whole periods in the span
   std::vector<std::vector<Eigen::Index>> lines;  // excited lines of each reference, increasing
   std::vector<Eigen::Index> all_lines;           // union of `lines`, increasing
 

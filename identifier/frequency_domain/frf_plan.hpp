@@ -3,7 +3,8 @@
 // "excitation" description (written by `ambid sim`, optional) says:
 // - r periodic (frf_periodicity.hpp): period-exact analysis at the lines r excites. One
 //   reference: exact DFT lines. Several references: the local polynomial method over each
-//   period (frf_periodic.hpp), which separates references excited on different lines.
+//   period (frf_periodic.hpp) with a local rational model (degree 4 over 2, 13 lines, no
+//   transient terms), which separates references excited on different lines.
 //   Transient rule: the first whole period is discarded (the loop settles from the switch-on
 //   of r), unless FrfAnalysisOptions::transient_periods says otherwise.
 // - The description is a hint only. A multisine description whose period r confirms (r
@@ -44,8 +45,7 @@ std::optional<PeriodicPlan> plan_periodic(const Experiment& experiment, const Pe
 
 // The stepped-sine estimator's options from the description, or nullopt (with a note) when
 // there is none or the steps cannot be analysed one by one.
-std::optional<SteppedSineFrfOptions> plan_stepped_sine(const Experiment& experiment,
-                                                       const nlohmann::json* description,
+std::optional<SteppedSineFrfOptions> plan_stepped_sine(const Experiment& experiment, const nlohmann::json* description,
                                                        const FrfAnalysisOptions& options,
                                                        std::vector<std::string>& notes);
 

@@ -167,7 +167,7 @@ TEST(FrfCli, ForeignPeriodicRecordIsAnalysedAtItsExactLines) {
   ASSERT_EQ(frf.status, 0) << frf.output;
   EXPECT_THAT(frf.output, HasSubstr("periodic estimate (unknown excitation"));
   EXPECT_THAT(frf.output, HasSubstr("periodic r (detected in the record): period 2000 samples (0.2 s), 20 whole "
-                                    "periods, 1 discarded as transient, 19 used; local polynomial"));
+                                    "periods, 1 discarded as transient, 19 used; local rational"));
   EXPECT_THAT(frf.output, HasSubstr("r1: 100 excited lines 5-995 Hz on a 5 Hz grid"));
   EXPECT_THAT(frf.output, HasSubstr("r2: 100 excited lines 10-1e+03 Hz on a 5 Hz grid"));
   const nlohmann::json json = cli_test::read_json(dir / "frf" / "frf.json");
@@ -186,7 +186,7 @@ TEST(FrfCli, ForeignPeriodicRecordIsAnalysedAtItsExactLines) {
   double worst_magnitude = 0.0, worst_phase = 0.0;
   for (std::size_t l = 0; l < f.size(); ++l) {
     EXPECT_NEAR(f[l], 5.0 * static_cast<double>(l + 1), 1e-9);
-    if (f[l] >= 1000.0) continue;
+    if (f[l] < 50.0 || f[l] >= 1000.0) continue;  // below 50 Hz: interpolated, see frf_foreign_periodic_test
     const std::complex<double> G(re[l], im[l]), G0 = sampled_linear_plant(f[l], 1e-4)(0, 0);
     worst_magnitude = std::max(worst_magnitude, std::abs(std::abs(G) / std::abs(G0) - 1.0));
     worst_phase = std::max(worst_phase, std::abs(std::arg(G / G0)) * 180.0 / std::numbers::pi);
