@@ -234,6 +234,14 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
       out.input_noise_variance.row(l) = (vu / positions).transpose();
     }
   }
+  if (o.plant_from_period_means && lpm && P == 1) {
+    Eigen::MatrixXcd U_mean = Eigen::MatrixXcd::Zero(nl, nu), Y_mean = Eigen::MatrixXcd::Zero(nl, ny);
+    for (Eigen::Index b = 0; b < B; ++b) {
+      U_mean += Up[static_cast<std::size_t>(b)];
+      Y_mean += Yp[static_cast<std::size_t>(b)];
+    }
+    out.plant.value = local_polynomial_frf({U_mean / b_count}, {Y_mean / b_count}, o.lines, o.local_polynomial);
+  }
   return out;
 }
 

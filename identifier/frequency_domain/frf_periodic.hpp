@@ -50,6 +50,11 @@ struct PeriodicFrfOptions {
   enum class TransientModel { automatic, none, local_polynomial };
   TransientModel transient_model = TransientModel::automatic;  // automatic: local polynomial when P > 1
   LocalPolynomialOptions local_polynomial;
+  // With the local model and P = 1: the plant from a local model of the period-mean outputs on
+  // the period-mean inputs (G is interpolated across lines instead of T_yr and T_ur, whose
+  // ratio is ill-conditioned where the loop suppresses an input direction). The variance stays
+  // that of the indirect estimate.
+  bool plant_from_period_means = false;
 };
 
 struct PeriodicFrf {

@@ -2,9 +2,10 @@
 // Which estimator `analyse_frf` runs, from what the recorded r shows and what the sidecar's
 // "excitation" description (written by `ambid sim`, optional) says:
 // - r periodic (frf_periodicity.hpp): period-exact analysis at the lines r excites. One
-//   reference: exact DFT lines. Several references: the local polynomial method over each
-//   period (frf_periodic.hpp) with a local rational model (degree 4 over 2, 13 lines, no
-//   transient terms), which separates references excited on different lines.
+//   reference: exact DFT lines. Several references (excited on different lines, or shifted
+//   copies): the plant from a local rational model (degree 4 over 2, 13 lines, no transient
+//   terms) of the period-mean outputs on the period-mean inputs, with the noise of the
+//   indirect local estimate per period (frf_periodic.hpp).
 //   Transient rule: the first whole period is discarded (the loop settles from the switch-on
 //   of r), unless FrfAnalysisOptions::transient_periods says otherwise.
 // - The description is a hint only. A multisine description whose period r confirms (r
