@@ -3,6 +3,8 @@
 // under its LQR observer controller) with no excitation description in the sidecar: analyse_frf
 // must find the period, the whole periods and each reference's lines in r alone, and recover
 // the analytic linear plant at every excited line; a random (never repeating) PRBS stays Welch.
+// One reference (the seed 003 rotor loop, simulated sample-exactly): exact DFT lines after a late
+// start and with a partial last period; a sidecar description that r contradicts is ignored.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -247,6 +249,80 @@ TEST(FrfForeignPeriodic, RandomPrbsThatNeverRepeatsStaysWelch) {
   EXPECT_FALSE(report.periodic.has_value());
   EXPECT_TRUE(std::any_of(report.notes.begin(), report.notes.end(),
                           [](const std::string& n) { return n.find("does not repeat") != std::string::npos; }));
+}
+
+// The seed 003 rotor under its PD controller (frf_test_helpers.hpp), T = 1 ms, driven by a
+// multisine on the odd lines of a 500-sample period (2 Hz grid, 2-198 Hz) switched on at sample
+// 300, 8 whole periods and 123 samples.
+Experiment rotor_record() {
+  const double T = 1e-3;
+  std::vector<std::vector<Eigen::Index>> odd(1);
+  for (Eigen::Index k = 1; k < 100; k += 2) odd[0].push_back(k);
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(300 + 8 * 500 + 123, 1);
+  r.bottomRows(8 * 500 + 123) = foreign_multisine(500, odd, 8 * 500 + 123, 1.0, 5);
+  const StateSpaceController K = test::sales_pd_controller(T);
+  const test::LoopData d = test::simulate_loop(c2d_zoh(test::sales_rotor_system(), T), K, test::sales_signals(), r);
+  Experiment e;
+  e.name = "rotor";
+  e.sample_time = T;
+  e.plant.model = "sales_rotor";
+  e.y_names = {"y"};
+  e.u_names = {"u"};
+  e.r_names = {"r"};
+  e.operating_point = {{"y", 0.0}, {"u", 0.0}};
+  e.controller = K;
+  e.t = Eigen::VectorXd::LinSpaced(r.rows(), 0.0, static_cast<double>(r.rows() - 1) * T);
+  e.y = d.y;
+  e.u = d.u;
+  e.r = r;
+  return e;
+}
+
+TEST(FrfForeignPeriodic, OneReferenceIsAnalysedAtItsExactLines) {
+  const Experiment e = rotor_record();
+  FrfAnalysisOptions o;
+  o.fit = false;
+  const FrfReport report = analyse_frf(e, o);
+  ASSERT_EQ(report.method, "periodic");
+  const PeriodicExcitation& p = *report.periodic;
+  EXPECT_EQ(p.estimator, "exact lines");
+  EXPECT_EQ(p.first_sample, 300);
+  EXPECT_EQ(p.period_samples, 500);
+  EXPECT_EQ(p.whole_periods, 8);
+  EXPECT_EQ(p.periods_used, 7);
+  ASSERT_EQ(report.frequency_hz.size(), 50);
+  double worst = 0.0;
+  for (Eigen::Index l = 0; l < report.frequency_hz.size(); ++l) {
+    const double f = report.frequency_hz(l);
+    EXPECT_NEAR(f, 2.0 * static_cast<double>(2 * l + 1), 1e-9);
+    const std::complex<double> z = std::exp(std::complex<double>(0.0, 2.0 * kPi * f * e.sample_time));
+    const std::complex<double> truth = test::sales_rotor_zoh(z, e.sample_time);
+    worst = std::max(worst, std::abs(report.plant.value[static_cast<std::size_t>(l)](0, 0) / truth - 1.0));
+  }
+  RecordProperty("rotor_exact_lines_worst_relative_error", test::scientific(worst));
+  EXPECT_LT(worst, 1e-8);  // steady state after the discarded period: exact to round-off
+}
+
+TEST(FrfForeignPeriodic, ADescriptionThatRContradictsIsIgnoredWithAWarning) {
+  Experiment e = rotor_record();
+  FrfAnalysisOptions o;
+  o.fit = false;
+  e.extra.json()["excitation"] = {{"kind", "multisine"}, {"period_samples", 250}, {"periods", 16}, {"lines", {1, 2}}};
+  FrfReport report = analyse_frf(e, o);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("does not repeat with that shift (it repeats every 500 samples"), std::string::npos)
+      << report.warnings[0];
+  EXPECT_EQ(report.periodic->source, "r");
+  EXPECT_EQ(report.periodic->period_samples, 500);
+  EXPECT_EQ(report.frequency_hz.size(), 50);
+
+  e.extra.json()["excitation"] = {{"kind", "random_binary"}};
+  report = analyse_frf(e, o);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("non-periodic random_binary excitation but the recorded r repeats every 500"),
+            std::string::npos)
+      << report.warnings[0];
+  EXPECT_EQ(report.method, "periodic");
 }
 
 }  // namespace
