@@ -1,0 +1,68 @@
+// The maglev grey-box fit on records of the simulated rig (plant_sim's maglev loop: 20 RK4
+// steps per sample of the nonlinear plant, the board's PID with clamps, uniform noise on u that
+// is not logged, 0.01 mm / 0.01 V / 0.01 mA logging): physical parameters against the truth.
+#include "identifier/families/maglev_greybox.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "plant_sim/maglev_loop.hpp"
+
+namespace ambid::ident {
+namespace {
+
+struct Case {
+  double sample_time;
+  Eigen::Index samples;
+  double n_i, n_x;
+};
+
+MaglevGreyBoxInput record(const Case& c, const sim::MaglevParameters& truth, std::uint64_t seed) {
+  sim::MaglevRunOptions o;
+  o.sample_time = c.sample_time;
+  o.samples = c.samples;
+  o.step_period = 1.5;
+  o.seed = seed;
+  const sim::MaglevRun run = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), sim::MaglevRig{}, o);
+  EXPECT_TRUE(run.ended.empty()) << run.ended;
+  const Experiment& e = run.experiment;
+  MaglevGreyBoxInput in;
+  in.sample_time = e.sample_time;
+  in.x = e.y.col(0);
+  in.i = e.y.col(1);
+  in.u = e.u.col(0);
+  in.x0 = e.operating_point.at("x");
+  in.i0 = e.operating_point.at("i");
+  in.nominal = sim::MaglevParameters::nominal().to_map();
+  return in;
+}
+
+TEST(MaglevGreyBox, PhysicalParametersWithinOnePercentAtTheRigsRates) {
+  for (const Case c : {Case{3.25e-3, 3000, 1.0, 4.0}, Case{1.3e-3, 4000, 1.0, 4.0}, Case{4e-3, 3000, 1.0, 4.0}}) {
+    SCOPED_TRACE(c.sample_time);
+    sim::MaglevParameters truth = sim::MaglevParameters::nominal();
+    truth.R = 205.0;
+    truth.L = 0.27;
+    truth.Km = 1.62e-8;
+    truth.Ke = 1.62e-8;
+    const MaglevGreyBoxInput in = record(c, truth, 7);
+    const MaglevGreyBoxFit fit = fit_maglev_greybox(in);
+    EXPECT_NEAR(fit.value.at("R") / truth.R, 1.0, 0.01);
+    EXPECT_NEAR(fit.value.at("L") / truth.L, 1.0, 0.01);
+    EXPECT_NEAR(fit.value.at("n_i") / truth.n_i, 1.0, 0.01);
+    EXPECT_NEAR(fit.value.at("n_x") / truth.n_x, 1.0, 0.01);
+    // At the measured point: the linearised force (n_x g / x0, n_i g / i0) and gravity balance.
+    EXPECT_NEAR(fit.value.at("stiffness") / (truth.n_x * truth.g / in.x0), 1.0, 0.01);
+    EXPECT_NEAR(fit.value.at("current_gain") / (truth.n_i * truth.g / in.i0), 1.0, 0.01);
+    EXPECT_NEAR(fit.value.at("rho"), 1.0, 0.005);
+    // Km carries the units m^n_x / A^n_i: an exponent off by 0.005 moves it by 2 % (at 4 ms the
+    // exponents are 0.14 % low, several of their sigmas: a model error of the estimator's
+    // within-sample reconstruction, not noise). Not within 1 %: within 2.5 %.
+    EXPECT_NEAR(fit.value.at("Km") / truth.Km, 1.0, 0.025);
+  }
+}
+
+}  // namespace
+}  // namespace ambid::ident
