@@ -17,8 +17,8 @@ const std::string kWho = "maglev grey-box fit";
 // 4-point Gauss-Legendre on [0, 1].
 constexpr std::array<double, 4> kNode = {0.5 - 0.5 * 0.8611363115940526, 0.5 - 0.5 * 0.3399810435848563,
                                          0.5 + 0.5 * 0.3399810435848563, 0.5 + 0.5 * 0.8611363115940526};
-constexpr std::array<double, 4> kWeight = {0.5 * 0.3478548451374538, 0.5 * 0.6521451548625461,
-                                           0.5 * 0.6521451548625461, 0.5 * 0.3478548451374538};
+constexpr std::array<double, 4> kWeight = {0.5 * 0.3478548451374538, 0.5 * 0.6521451548625461, 0.5 * 0.6521451548625461,
+                                           0.5 * 0.3478548451374538};
 
 double nominal_value(const MaglevGreyBoxInput& in, const char* name) {
   const auto it = in.nominal.find(name);
@@ -55,8 +55,9 @@ Coil fit_coil(const MaglevGreyBoxInput& in, double n_i, double n_x) {
     throw InsufficientData(kWho + ": the coil regression has a zero column (constant current, command or gap)");
   const Eigen::MatrixXd As = A * scale.cwiseInverse().asDiagonal();
   const auto solution = linalg::qr_solve(As, b);
-  if (solution.rank < 3) throw InsufficientData(kWho + ": the coil regression is rank deficient (rank " +
-                                                std::to_string(solution.rank) + " of 3)");
+  if (solution.rank < 3)
+    throw InsufficientData(kWho + ": the coil regression is rank deficient (rank " + std::to_string(solution.rank) +
+                           " of 3)");
   const Eigen::MatrixXd gram = linalg::qr_inverse_gram(As);
   if (gram.size() == 0) throw InsufficientData(kWho + ": the coil regression is rank deficient");
   Coil c;
@@ -88,9 +89,9 @@ Eigen::Vector3d coil_physical(const Eigen::Vector3d& p, double Ts, double kw, do
 struct Body {
   Index m = 0;
   double Ts = 0, g = 0;
-  Eigen::MatrixXd li, lx;   // intervals x 4
+  Eigen::MatrixXd li, lx;  // intervals x 4
   std::vector<Index> centres;
-  Eigen::VectorXd lhs;      // per centre: x[k+m] - 2 x[k] + x[k-m] - g (m Ts)^2
+  Eigen::VectorXd lhs;  // per centre: x[k+m] - 2 x[k] + x[k-m] - g (m Ts)^2
 };
 
 Body body_windows(const MaglevGreyBoxInput& in, double R, double L, double Ke, double kw, double n_i, double n_x,
@@ -173,8 +174,8 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   if ((in.x.array() <= 0.0).any()) throw Error(kWho + ": the gap x must be positive in every sample");
   if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0)) {
     std::ostringstream msg;
-    msg << kWho << ": sample time, operating gap, operating current and window must be positive, got "
-        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window;
+    msg << kWho << ": sample time, operating gap, operating current and window must be positive, got " << in.sample_time
+        << ", " << in.x0 << ", " << in.i0 << ", " << in.window;
     throw Error(msg.str());
   }
   if (N < 20) throw InsufficientData(kWho + ": " + std::to_string(N) + " samples are too few");

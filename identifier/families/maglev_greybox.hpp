@@ -35,7 +35,7 @@ namespace ambid::ident {
 
 struct MaglevGreyBoxInput {
   double sample_time = 0.0;
-  Eigen::VectorXd x, i, u;  // logged gap (m), current (A), command (V), one entry per sample
+  Eigen::VectorXd x, i, u;    // logged gap (m), current (A), command (V), one entry per sample
   double x0 = 0.0, i0 = 0.0;  // the operating point (measured, or the nominal model's)
   // Nominal m, g, kw (taken as known) and R, L, Km, Ke, n_i, n_x (starting values).
   std::map<std::string, double> nominal;
