@@ -28,7 +28,7 @@ MaglevLinearization at(const MaglevParameters& p, const MaglevOperatingPoint& op
   out.unstable_pole = std::sqrt(out.stiffness);
   const double emf = p.n_i * out.Ke * std::pow(op.i, p.n_i - 1.0) / std::pow(op.x, p.n_x);
   Eigen::MatrixXd A(3, 3), B(3, 1), C(2, 3);
-  A << 0.0, 1.0, 0.0,                          //
+  A << 0.0, 1.0, 0.0,                         //
       out.stiffness, 0.0, -out.current_gain,  //
       0.0, emf / p.L, -p.R / p.L;
   B << 0.0, 0.0, p.kw / p.L;

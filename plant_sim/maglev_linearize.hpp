@@ -24,10 +24,10 @@ struct MaglevLinearization {
   ContinuousSystem system;
   Eigen::MatrixXd disturbance;  // d(state')/dFz = [0, 1/m, 0]^T
   MaglevOperatingPoint point;
-  double Km = 0.0, Ke = 0.0;    // the constants the linearisation used (closed by gravity balance)
-  double stiffness = 0.0;       // n_x g / x0 [1/s^2]
-  double current_gain = 0.0;    // n_i g / i0 [m/(s^2 A)]
-  double unstable_pole = 0.0;   // sqrt(n_x g / x0): the mechanical pole with the current held [rad/s]
+  double Km = 0.0, Ke = 0.0;   // the constants the linearisation used (closed by gravity balance)
+  double stiffness = 0.0;      // n_x g / x0 [1/s^2]
+  double current_gain = 0.0;   // n_i g / i0 [m/(s^2 A)]
+  double unstable_pole = 0.0;  // sqrt(n_x g / x0): the mechanical pole with the current held [rad/s]
   // The nominal model's own equilibrium at x0 (current, command) and the measured point's
   // ratio to it (1 at the model's own equilibrium).
   double nominal_current = 0.0, nominal_input = 0.0;

@@ -121,7 +121,8 @@ MaglevRun run_maglev_rig(const MaglevParameters& truth, const MaglevParameters& 
   e.y_names = plant.output_names();
   e.u_names = plant.input_names();
   // Measured operating point: the second half of the first level (as much of it as was run).
-  const Eigen::Index first = std::min(level_samples, k), begin = first / 2, n = std::max<Eigen::Index>(1, first - begin);
+  const Eigen::Index first = std::min(level_samples, k), begin = first / 2,
+                     n = std::max<Eigen::Index>(1, first - begin);
   e.operating_point = {{"x", e.y.col(0).segment(begin, n).mean()},
                        {"i", e.y.col(1).segment(begin, n).mean()},
                        {"u", e.u.col(0).segment(begin, n).mean()}};

@@ -25,12 +25,12 @@ struct MaglevRunOptions {
   double sample_time = 3.25e-3;  // s (the rig runs at 1.3, 1.5, 3.25 or 4 ms)
   Eigen::Index samples = 3000;
   std::vector<double> levels = {0.014, 0.013, 0.015, 0.0145, 0.016, 0.0135};  // reference, m, cycled
-  double step_period = 2.0;      // s each level is held
-  double noise_amplitude = 0.5;  // w uniform in [-a, a] V
-  double position_noise = 0.0;   // std of white sensor noise on y (m), seen by the controller and logged
-  double current_noise = 0.0;    // std of white noise on the logged current (A)
-  double force_noise = 0.0;      // std of the process force Fz (N), held over a sample
-  int substeps = 20;             // RK4 steps per sample
+  double step_period = 2.0;                                                   // s each level is held
+  double noise_amplitude = 0.5;                                               // w uniform in [-a, a] V
+  double position_noise = 0.0;  // std of white sensor noise on y (m), seen by the controller and logged
+  double current_noise = 0.0;   // std of white noise on the logged current (A)
+  double force_noise = 0.0;     // std of the process force Fz (N), held over a sample
+  int substeps = 20;            // RK4 steps per sample
   std::uint64_t seed = 1;
 };
 

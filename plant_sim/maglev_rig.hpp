@@ -13,12 +13,12 @@ struct MaglevRig {
   //   I_k = clamp(I_{k-1} + Kp Ts/Ti e_k, integral_min, integral_max)
   //   u_pid = clamp(Kp e_k + I_k + Kp Td/Ts (e_k - e_{k-1}), pid_min, pid_max)
   //   u = clamp(u_pid + w_k, 0, v_ref)          (w: the excitation noise, not logged)
-  double Kp = 4.0;  // V/mm (3 lets the body reach the ground after the step to 16 mm)
-  double Ti = 0.3;  // s
-  double Td = 0.025;  // s
+  double Kp = 4.0;                                 // V/mm (3 lets the body reach the ground after the step to 16 mm)
+  double Ti = 0.3;                                 // s
+  double Td = 0.025;                               // s
   double integral_min = 0.0, integral_max = 12.0;  // V
-  double pid_min = 0.0, pid_max = 12.0;  // V
-  double v_ref = 12.0;  // V: the DAC's full scale (output clamp [0, v_ref])
+  double pid_min = 0.0, pid_max = 12.0;            // V
+  double v_ref = 12.0;                             // V: the DAC's full scale (output clamp [0, v_ref])
   // DAC: the coil gets the command rounded to multiples of dac_step (0: ideal).
   double dac_step = 0.0;  // V
   // Hall sensor: y = sensor_offset + sensor_gain * x_r (x/x_r)^sensor_exponent + sensor_coupling * i,

@@ -15,9 +15,10 @@ void require(bool ok, const std::string& message) {
 }  // namespace
 
 Experiment simulate_maglev(const ScenarioOptions& o, ClosedLoopStatistics* statistics) {
-  require(o.effects.empty(), "plant model 'maglev1coil_voltage' has no effect catalogue yet; the rig's sensor and "
-                             "actuator errors are --rig settings (sensor_gain, sensor_offset, sensor_exponent, "
-                             "sensor_coupling, sensor_delay, dac_step)");
+  require(o.effects.empty(),
+          "plant model 'maglev1coil_voltage' has no effect catalogue yet; the rig's sensor and "
+          "actuator errors are --rig settings (sensor_gain, sensor_offset, sensor_exponent, "
+          "sensor_coupling, sensor_delay, dac_step)");
   require(o.controller == "pid", "the rig runs its board's PID (controller 'pid'), got '" + o.controller + "'");
   require(o.excitation == "uniform" || o.excitation == "none",
           "excitation must be uniform (white noise added to u, not logged) or none, got '" + o.excitation + "'");

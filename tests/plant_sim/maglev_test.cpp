@@ -28,7 +28,8 @@ TEST(Maglev, EquilibriumCurrentBalancesGravity) {
   EXPECT_NEAR(reluctance.equilibrium_current(0.015), 0.015 * std::sqrt(7.4e-4 * kG / 3.333e-6), 1e-14);
   // The body held there does not move, and the coil current holds.
   const Maglev1coilVoltage plant(reluctance, 0.015);
-  const Eigen::VectorXd d = plant.derivative(plant.equilibrium_state(), plant.equilibrium_input(), Eigen::VectorXd::Zero(1));
+  const Eigen::VectorXd d =
+      plant.derivative(plant.equilibrium_state(), plant.equilibrium_input(), Eigen::VectorXd::Zero(1));
   EXPECT_NEAR(d.norm(), 0.0, 1e-12);
 }
 
