@@ -52,11 +52,8 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
   c.D = Eigen::MatrixXd::Zero(2, 1);
   model.continuous = c;
   model.discrete = c2d_zoh(c, e.sample_time);
-  model.parameters = {{"a", v.at("stiffness")},
-                      {"b", v.at("current_gain")},
-                      {"R_over_L", R / L},
-                      {"kw_over_L", kw / L},
-                      {"emf", emf}};
+  model.parameters = {
+      {"a", v.at("stiffness")}, {"b", v.at("current_gain")}, {"R_over_L", R / L}, {"kw_over_L", kw / L}, {"emf", emf}};
   model.uncertainty["a"] = fit.sigma.at("stiffness");
   model.uncertainty["b"] = fit.sigma.at("current_gain");
   for (const char* name : {"R", "L", "Ke", "Km", "n_i", "n_x", "rho", "unstable_pole"}) {
@@ -66,8 +63,8 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
   nlohmann::json& extra = model.extra.json();
   const double m = nominal("m"), g = nominal("g"), Km = nominal("Km"), n_i0 = nominal("n_i"), n_x0 = nominal("n_x");
   const double i_nominal = std::pow(m * g * std::pow(in.x0, n_x0) / Km, 1.0 / n_i0);
-  const bool measured = e.extra.json().is_object() &&
-                        e.extra.json().value("operating_point_source", std::string()) == "measured";
+  const bool measured =
+      e.extra.json().is_object() && e.extra.json().value("operating_point_source", std::string()) == "measured";
   extra["operating_point"] = {{"source", measured ? "measured" : "nominal"},
                               {"x", in.x0},
                               {"i", in.i0},

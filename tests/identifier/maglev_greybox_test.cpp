@@ -64,5 +64,64 @@ TEST(MaglevGreyBox, PhysicalParametersWithinOnePercentAtTheRigsRates) {
   }
 }
 
+TEST(MaglevGreyBox, FindsAForceLawOtherThanTheNominals) {
+  // The truth follows the reluctance law (n_i = n_x = 2, Km = Ke = 3.94e-3 holds 14 mm with
+  // 19 mA); the nominal model, and so the fit's start, is the dipole law (1, 4). The board's
+  // PID, tuned for the dipole, lets this loop swing (the DAC clamps at 0 V): the first level's
+  // means are no equilibrium, and rho says by how much.
+  sim::MaglevParameters truth = sim::MaglevParameters::nominal();
+  truth.n_i = truth.n_x = 2.0;
+  truth.Km = truth.Ke = 3.94e-3;
+  sim::MaglevRig rig;
+  rig.Kp = 2.5;
+  rig.Td = 0.04;
+  sim::MaglevRunOptions o;
+  o.samples = 3000;
+  o.step_period = 1.5;
+  o.seed = 3;
+  const sim::MaglevRun run = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), rig, o);
+  ASSERT_TRUE(run.ended.empty()) << run.ended;
+  const Experiment& e = run.experiment;
+  MaglevGreyBoxInput in;
+  in.sample_time = e.sample_time;
+  in.x = e.y.col(0);
+  in.i = e.y.col(1);
+  in.u = e.u.col(0);
+  in.x0 = e.operating_point.at("x");
+  in.i0 = e.operating_point.at("i");
+  in.nominal = sim::MaglevParameters::nominal().to_map();
+  const MaglevGreyBoxFit fit = fit_maglev_greybox(in);
+  EXPECT_NEAR(fit.value.at("n_i") / 2.0, 1.0, 0.01);
+  EXPECT_NEAR(fit.value.at("n_x") / 2.0, 1.0, 0.01);
+  EXPECT_NEAR(fit.value.at("R") / truth.R, 1.0, 0.01);
+  EXPECT_NEAR(fit.value.at("L") / truth.L, 1.0, 0.01);
+  // Gravity balance of the true law at the logged means: Km i0^2 / (m g x0^2), here about 0.65.
+  const double rho = truth.Km * in.i0 * in.i0 / (truth.m * truth.g * in.x0 * in.x0);
+  EXPECT_LT(rho, 0.8);
+  EXPECT_NEAR(fit.value.at("rho") / rho, 1.0, 0.01);
+}
+
+TEST(MaglevGreyBox, BadInputIsNamed) {
+  MaglevGreyBoxInput in;
+  in.sample_time = 3.25e-3;
+  in.x = Eigen::VectorXd::Constant(100, 0.014);
+  in.i = Eigen::VectorXd::Constant(99, 0.019);
+  in.u = Eigen::VectorXd::Constant(100, 4.0);
+  in.x0 = 0.014;
+  in.i0 = 0.019;
+  in.nominal = sim::MaglevParameters::nominal().to_map();
+  EXPECT_THROW(fit_maglev_greybox(in), Error);  // sizes
+  in.i = Eigen::VectorXd::Constant(100, 0.019);
+  in.nominal.erase("kw");
+  try {
+    fit_maglev_greybox(in);
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "maglev grey-box fit: nominal parameter 'kw' is missing");
+  }
+  in.nominal = sim::MaglevParameters::nominal().to_map();
+  EXPECT_THROW(fit_maglev_greybox(in), InsufficientData);  // a record at rest: nothing to fit
+}
+
 }  // namespace
 }  // namespace ambid::ident
