@@ -31,6 +31,21 @@ double nominal_value(const MaglevGreyBoxInput& in, const char* name) {
   return it->second;
 }
 
+// The gap within sample interval j at s in [0, 1] and its rate dx/ds: Catmull-Rom through
+// x[j-1..j+2] (the end samples repeated at the record's ends).
+struct GapCubic {
+  double xm, x0, x1, x2;
+  GapCubic(const Eigen::VectorXd& x, Index j)
+      : xm(x(std::max<Index>(j - 1, 0))), x0(x(j)), x1(x(j + 1)), x2(x(std::min<Index>(j + 2, x.size() - 1))) {}
+  double at(double s) const {
+    return 0.5 * (2 * x0 + (-xm + x1) * s + (2 * xm - 5 * x0 + 4 * x1 - x2) * s * s +
+                  (-xm + 3 * x0 - 3 * x1 + x2) * s * s * s);
+  }
+  double rate(double s) const {
+    return 0.5 * ((-xm + x1) + 2 * (2 * xm - 5 * x0 + 4 * x1 - x2) * s + 3 * (-xm + 3 * x0 - 3 * x1 + x2) * s * s);
+  }
+};
+
 // i^(n_i - 1) of the back-EMF, with the current floored at 1 % of the operating current: for
 // n_i < 1 the family's flux diverges at zero current (the DAC clamped at 0 V empties the coil).
 double emf_factor(double current, double n_i, double i0) {
@@ -43,13 +58,27 @@ struct Coil {
   double residual_rms = 0;
 };
 
-// Step 1: i[k+1] = a i[k] + beta u[k] + gamma phi[k], columns equilibrated before the QR.
-Coil fit_coil(const MaglevGreyBoxInput& in, double n_i, double n_x) {
+// The back-EMF regressor of sample k: i^(n_i-1) times the integral over the sample of
+// x'/x^n_x weighted by the coil's response exp(-(R/L)(Ts - t)) (4 Gauss-Legendre nodes on the
+// cubic through the logged gaps): the motion late in the sample counts more.
+double emf_regressor(const MaglevGreyBoxInput& in, Index k, double n_i, double n_x, double decay) {
+  const GapCubic cubic(in.x, k);
+  const double Ts = in.sample_time;
+  double sum = 0.0;
+  for (int q = 0; q < 4; ++q) {
+    const double s = kNode[std::size_t(q)];
+    sum += kWeight[std::size_t(q)] * std::exp(-decay * Ts * (1.0 - s)) * cubic.rate(s) / std::pow(cubic.at(s), n_x);
+  }
+  return emf_factor(in.i(k), n_i, in.i0) * sum;  // the rate is per unit s: the Ts of dt cancels
+}
+
+// Step 1: i[k+1] = a i[k] + beta u[k] + gamma phi[k], columns equilibrated before the QR;
+// `decay` the coil's R/L of the previous estimate.
+Coil fit_coil(const MaglevGreyBoxInput& in, double n_i, double n_x, double decay) {
   const Index n = in.x.size() - 1;
   Eigen::MatrixXd A(n, 3);
   Eigen::VectorXd b = in.i.tail(n);
-  for (Index k = 0; k < n; ++k)
-    A.row(k) << in.i(k), in.u(k), emf_factor(in.i(k), n_i, in.i0) * (in.x(k + 1) - in.x(k)) / std::pow(in.x(k), n_x);
+  for (Index k = 0; k < n; ++k) A.row(k) << in.i(k), in.u(k), emf_regressor(in, k, n_i, n_x, decay);
   const Eigen::Vector3d scale = A.colwise().norm().transpose();
   if (!(scale.array() > 0.0).all())
     throw InsufficientData(kWho + ": the coil regression has a zero column (constant current, command or gap)");
@@ -78,10 +107,10 @@ Coil fit_coil(const MaglevGreyBoxInput& in, double n_i, double n_x) {
   return c;
 }
 
-// R, L, Ke from (a, beta, gamma).
+// R, L, Ke from (a, beta, gamma): the EMF enters i[k+1] as (1/L) n_i Ke phi[k].
 Eigen::Vector3d coil_physical(const Eigen::Vector3d& p, double Ts, double kw, double n_i) {
-  const double R = kw * (1.0 - p(0)) / p(1);
-  return {R, -R * Ts / std::log(p(0)), p(2) * R * Ts / ((1.0 - p(0)) * n_i)};
+  const double R = kw * (1.0 - p(0)) / p(1), L = -R * Ts / std::log(p(0));
+  return {R, L, p(2) * L / n_i};
 }
 
 // The body's windows: per sample interval j and node q the log ratios of i and x to the
@@ -111,14 +140,11 @@ Body body_windows(const MaglevGreyBoxInput& in, double R, double L, double Ke, d
     const double velocity = (in.x(j + 1) - in.x(j)) / b.Ts;
     const double emf = -n_i * Ke * emf_factor(in.i(j), n_i, in.i0) * velocity / std::pow(in.x(j), n_x);
     const double settled = (kw * in.u(j) - emf) / R;
-    // Catmull-Rom through x[j-1..j+2] (one-sided at the ends).
-    const double xm = in.x(std::max<Index>(j - 1, 0)), x0 = in.x(j), x1 = in.x(j + 1),
-                 x2 = in.x(std::min<Index>(j + 2, N - 1));
+    const GapCubic cubic(in.x, j);
     for (int q = 0; q < 4; ++q) {
       const double s = kNode[std::size_t(q)];
       const double current = settled + (in.i(j) - settled) * std::exp(-s * b.Ts * R / L);
-      const double gap = 0.5 * (2 * x0 + (-xm + x1) * s + (2 * xm - 5 * x0 + 4 * x1 - x2) * s * s +
-                                (-xm + 3 * x0 - 3 * x1 + x2) * s * s * s);
+      const double gap = cubic.at(s);
       if (!(current > 0.0) || !(gap > 0.0)) usable[std::size_t(j)] = false;
       b.li(j, q) = current > 0.0 ? std::log(current / in.i0) : 0.0;
       b.lx(j, q) = gap > 0.0 ? std::log(in.x0 / gap) : 0.0;
@@ -181,7 +207,7 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   if (N < 20) throw InsufficientData(kWho + ": " + std::to_string(N) + " samples are too few");
   const double m = nominal_value(in, "m"), g = nominal_value(in, "g"), kw = nominal_value(in, "kw");
   double n_i = nominal_value(in, "n_i"), n_x = nominal_value(in, "n_x");
-  nominal_value(in, "Ke");
+  nominal_value(in, "Ke");  // required like the others, though the fit starts without it
   const double Ts = in.sample_time;
 
   MaglevGreyBoxFit out;
@@ -189,9 +215,11 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   Coil coil;
   Eigen::Vector3d coil_values;
   // The coil's back-EMF regressor and the body's i(t) use each other's exponents: two passes.
+  double decay = nominal_value(in, "R") / nominal_value(in, "L");
   for (int pass = 0; pass < 2; ++pass) {
-    coil = fit_coil(in, n_i, n_x);
+    coil = fit_coil(in, n_i, n_x, decay);
     coil_values = coil_physical({coil.a, coil.beta, coil.gamma}, Ts, kw, n_i);
+    decay = coil_values(0) / coil_values(1);
     const Body body = body_windows(in, coil_values(0), coil_values(1), std::max(coil_values(2), 0.0), kw, n_i, n_x, g);
     if (body.centres.size() < 10) throw InsufficientData(kWho + ": fewer than 10 usable windows for the body");
     NonlinearLeastSquares problem;

@@ -6,9 +6,10 @@
 //
 // 1. Coil: with u held by the DAC over a sample, the exact zero-order-hold solution is
 //      i[k+1] = a i[k] + beta u[k] + gamma phi[k],   a = exp(-R Ts / L),  beta = kw (1 - a) / R,
-//    phi[k] = i[k]^(n_i - 1) (x[k+1] - x[k]) / x[k]^n_x the back-EMF over the sample (first
-//    order in the motion), gamma = n_i Ke (1 - a) / (R Ts). Linear least squares (QR with rank
-//    check); R, L, Ke follow with the nominal kw (the data cannot separate kw from R and L).
+//    phi[k] = i[k]^(n_i - 1) times the integral over the sample of exp(-(R/L)(Ts - t)) x'/x^n_x
+//    (the back-EMF as the coil responds to it; x from a cubic through the logged gaps, R/L of
+//    the previous pass), gamma = n_i Ke / L. Linear least squares (QR with rank check); R, L,
+//    Ke follow with the nominal kw (the data cannot separate kw from R and L).
 // 2. Body: the second difference over m samples equals the double integral of the acceleration,
 //      x[k+m] - 2 x[k] + x[k-m] = sum over [t[k-m], t[k+m]] of (m Ts - |t - t[k]|) x''(t),
 //      x'' = g - g rho (i / i0)^n_i (x0 / x)^n_x,

@@ -82,7 +82,7 @@ Input model_input(const std::string& file, double start, const std::string& plan
   try {
     diag::require_diagnostics_piece(m.plant_model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
   } catch (const Error& e) {
-    throw Error(file + ": " + e.what());
+    throw Error(file + ": plant_model is '" + m.plant_model + "': " + e.what());
   }
   try {
     return {file,
