@@ -135,7 +135,9 @@ void add_sim_command(CLI::App& app) {
                   "Td and clamps, sensor_gain, sensor_offset, sensor_exponent, sensor_coupling, sensor_delay, "
                   "dac_step, v_ref, log_x, log_u, log_i (plant_sim/maglev_rig.hpp)");
   sim->add_option("--levels", args->levels_mm,
-                  "reference levels in mm, cycled (maglev1coil_voltage only; default 14 13 15 14.5 16 13.5)");
+                  "reference levels in mm, comma separated, cycled (maglev1coil_voltage only; default "
+                  "14,13,15,14.5,16,13.5)")
+      ->delimiter(',');
   sim->add_option("--step-period", o.step_period, "seconds each reference level is held (maglev1coil_voltage)")
       ->capture_default_str();
   sim->add_option("--out", args->out, "output stem: writes STEM.csv and STEM.json")->required();
