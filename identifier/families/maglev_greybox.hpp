@@ -7,18 +7,20 @@
 // 1. Coil: with u held by the DAC over a sample, the exact zero-order-hold solution is
 //      i[k+1] = a i[k] + beta u[k] + gamma phi[k],   a = exp(-R Ts / L),  beta = kw (1 - a) / R,
 //    phi[k] = i[k]^(n_i - 1) times the integral over the sample of exp(-(R/L)(Ts - t)) x'/x^n_x
-//    (the back-EMF as the coil responds to it; x from a cubic through the logged gaps, R/L of
-//    the previous pass), gamma = n_i Ke / L. Linear least squares (QR with rank check); R, L,
-//    Ke follow with the nominal kw (the data cannot separate kw from R and L).
+//    (the back-EMF as the coil responds to it; x(t) and R/L of the previous pass),
+//    gamma = n_i Ke / L. Linear least squares (QR with rank check); R, L, Ke follow with the
+//    nominal kw (the data cannot separate kw from R and L).
 // 2. Body: the second difference over m samples equals the double integral of the acceleration,
 //      x[k+m] - 2 x[k] + x[k-m] = sum over [t[k-m], t[k+m]] of (m Ts - |t - t[k]|) x''(t),
 //      x'' = g - g rho (i / i0)^n_i (x0 / x)^n_x,
 //    with (x0, i0) the operating point of the record and rho = 1 when gravity balances there.
-//    The integral runs over 4 Gauss-Legendre nodes per sample, with i(t) between samples from the
-//    coil model of step 1 (the electrical pole lies within a sample at the rig's rates) and x(t)
-//    from a cubic through the logged gaps. rho, n_i, n_x by Levenberg-Marquardt. The left side
-//    carries the logger's rounding of x once, however long the window: a window of m samples
-//    raises the signal by m^2 over a second difference.
+//    The integral runs over 4 Gauss-Legendre nodes per sample, with i(t) between samples from
+//    the coil model of step 1 (the electrical pole lies within a sample at the rig's rates) and
+//    x(t) the chord between the logged gaps bent by the model's own acceleration
+//    (maglev_greybox.cpp, SampleMotion): the acceleration jumps with the command at every
+//    sample. rho, n_i, n_x by Levenberg-Marquardt. The left side carries the logger's rounding
+//    of x once, however long the window: a window of m samples raises the signal by m^2 over a
+//    second difference. Three passes of steps 1 and 2.
 //
 // m and kw come from the nominal parameters (the data cannot separate them from Km, R and L):
 // Km = rho m g x0^n_x / i0^n_i. Uncertainty (one sigma): least-squares covariance for step 1,
