@@ -4,6 +4,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "plant_sim/families.hpp"
@@ -34,6 +36,12 @@ void print_summary(const Experiment& e, const std::string& stem, const sim::Clos
               << dy.col(j).cwiseAbs().maxCoeff() << "\n";
   for (Eigen::Index j = 0; j < du.cols(); ++j)
     std::cout << "  " << e.u_names[std::size_t(j)] << ": rms deviation " << rms(du.col(j)) << " V\n";
+  const nlohmann::json& extra = e.extra.json();
+  if (extra.is_object() && extra.value("operating_point_source", std::string()) == "measured") {
+    std::cout << "  operating point (measured, the first level's means):";
+    for (const auto& [name, value] : e.operating_point) std::cout << " " << name << " = " << value;
+    std::cout << "\n";
+  }
   if (stats.saturated_samples > 0)
     std::cout << "  a limit or clamp acted in " << stats.saturated_samples << " samples\n";
   std::cout << "  wrote " << stem << ".csv and " << stem << ".json\n";
