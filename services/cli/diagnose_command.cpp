@@ -35,6 +35,7 @@
 #include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
@@ -77,9 +78,11 @@ bool is_model_file(const std::filesystem::path& path) {
 
 Input model_input(const std::string& file, double start, const std::string& plant_id) {
   const Model m = read_model(file);
-  if (m.plant_model != "amb1dof_voltage")
-    throw Error(file + ": plant_model is '" + m.plant_model +
-                "'; diagnose knows the parameters of amb1dof_voltage only");
+  try {
+    diag::require_diagnostics_piece(m.plant_model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& e) {
+    throw Error(file + ": plant_model is '" + m.plant_model + "': " + e.what());
+  }
   try {
     return {file,
             "model",
@@ -94,6 +97,11 @@ Input experiment_input(const std::string& file, double start, double window, con
                        const std::string& plant_id) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
   const Experiment e = read_experiment(file).experiment;
+  try {
+    diag::require_diagnostics_piece(e.plant.model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& err) {
+    throw Error(file + ": " + err.what());
+  }
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
   Input in{file, "experiment", {}, e};
