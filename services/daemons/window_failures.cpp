@@ -50,8 +50,10 @@ WindowFailures::Change WindowFailures::failed(const ident::WindowFailure& failur
 WindowFailures::Change WindowFailures::update() {
   if (recent_.size() > rule_.recent) recent_.pop_front();
   const auto failed = std::size_t(std::count(recent_.begin(), recent_.end(), true));
+  // The fraction over the windows seen so far once there are `consecutive` of them: a
+  // stream that starts failing does not flap between a failure run and the first success.
   const bool now = consecutive_ >= rule_.consecutive ||
-                   (recent_.size() == rule_.recent && double(failed) > rule_.fraction * double(rule_.recent));
+                   (recent_.size() >= rule_.consecutive && double(failed) > rule_.fraction * double(recent_.size()));
   const Change change = now == failing_ ? Change::none : (now ? Change::started : Change::cleared);
   failing_ = now;
   return change;

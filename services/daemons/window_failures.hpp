@@ -4,7 +4,7 @@
 // (the metric ambid_windows_unidentified_total{reason}, and Health) and whether the windows
 // are failing, by a configurable rule:
 //   failing while the last `consecutive` windows all failed, or more than `fraction` of the
-//   last `recent` windows failed (once `recent` windows were seen);
+//   last `recent` windows failed (of those seen so far, once there are `consecutive`);
 // it clears when neither holds any more (windows are identified again).
 // The identifier daemon turns "failing" into Health WARN naming the reason. The parameters'
 // alerts belong to the diagnostics daemon (architecture.md: identifier -> models ->

@@ -44,12 +44,13 @@ TEST(WindowFailures, ReasonsOfTheErrorTypes) {
   EXPECT_THAT(kNoContinuous.message, HasSubstr("-0.93"));
 }
 
-// 4 in a row (the default) start it; the Health message names the counts, the rule and the
-// last reason; one identified window clears it while fewer than `recent` windows were seen.
+// After 4 identified windows, 4 failures in a row (the default) start it (4 of 8 is not more
+// than half); the Health message names the counts, the rule and the last reason; an identified
+// window clears it once no more than half of the windows seen failed.
 TEST(WindowFailures, ConsecutiveFailuresWarnAndAnIdentifiedWindowClears) {
   Metrics metrics("identifier", 0);
   WindowFailures f(WindowFailureRule{}, metrics);
-  EXPECT_EQ(f.identified(), Change::none);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(f.identified(), Change::none);
   EXPECT_EQ(f.failed(kUnexciting), Change::none);
   EXPECT_EQ(f.failed(kNoContinuous), Change::none);
   EXPECT_EQ(f.failed(kNoContinuous), Change::none);
@@ -63,36 +64,32 @@ TEST(WindowFailures, ConsecutiveFailuresWarnAndAnIdentifiedWindowClears) {
   EXPECT_EQ(unidentified(metrics, "no_continuous_model"), 4.0);
   EXPECT_EQ(unidentified(metrics, "insufficient_data"), 1.0);
   EXPECT_EQ(unidentified(metrics, "error"), 0.0);
-  EXPECT_THAT(f.message(), StartsWith(std::string(kFailingWindows) + "5 in a row, 5 of the last 6"));
+  EXPECT_THAT(f.message(), StartsWith(std::string(kFailingWindows) + "5 in a row, 5 of the last 9"));
   EXPECT_THAT(f.message(), HasSubstr("last no_continuous_model: d2c: discrete eigenvalue -0.93"));
   EXPECT_LE(f.message().size(), bus::limits::text_length);
   EXPECT_TRUE(reports_failing_windows(identifier_health(f), "bearing-1"));
   EXPECT_FALSE(reports_failing_windows(identifier_health(f), "bearing-2"));
 
-  EXPECT_EQ(f.identified(), Change::cleared);
+  EXPECT_EQ(f.identified(), Change::cleared);  // 5 of 10
   EXPECT_FALSE(f.failing());
   EXPECT_EQ(f.message(),
             "windows identified again; skipped so far: error 0, insufficient_data 1, no_continuous_model 4");
   EXPECT_FALSE(reports_failing_windows(identifier_health(f), "bearing-1"));
 }
 
-// Failures never 3 in a row but 3 of every 4 windows: the fraction rule starts it once `recent`
-// windows were seen, and it clears only when at most half of the last `recent` failed.
+// Never 4 in a row but 2 of every 3 windows fail: the fraction rule starts it once 4 windows
+// were seen, and it clears only when at most half of the last `recent` failed.
 TEST(WindowFailures, MoreThanHalfOfTheRecentWindowsWarn) {
   Metrics metrics("identifier", 0);
-  WindowFailures f(WindowFailureRule{3, 8, 0.5}, metrics);
+  WindowFailures f(WindowFailureRule{4, 6, 0.5}, metrics);
   std::vector<Change> changes;
-  for (int i = 0; i < 8; ++i) changes.push_back(i % 4 == 3 ? f.identified() : f.failed(kUnexciting));
-  // Windows 1-3 fail: 3 in a row already.
-  EXPECT_EQ(changes[2], Change::started);
-  EXPECT_EQ(changes[3], Change::cleared);  // 0 in a row, and only 4 windows seen
-  EXPECT_EQ(changes[6], Change::started);  // 3 in a row again
-  EXPECT_EQ(changes[7], Change::none);     // 6 of the last 8 failed: still failing
+  for (int i = 0; i < 9; ++i) changes.push_back(i % 3 == 2 ? f.identified() : f.failed(kUnexciting));
+  EXPECT_EQ(changes[2], Change::none);     // 2 of 3 failed, fewer than 4 windows seen
+  EXPECT_EQ(changes[3], Change::started);  // 3 of 4
+  for (int i = 4; i < 9; ++i) EXPECT_EQ(changes[std::size_t(i)], Change::none) << i;  // 4 of the last 6
   EXPECT_TRUE(f.failing());
-  EXPECT_THAT(f.message(), HasSubstr("0 in a row, 6 of the last 8"));
-  // Identified windows: 5 of the last 8 failed after one, 4 of 8 after two -> clears.
-  EXPECT_EQ(f.identified(), Change::none);
-  EXPECT_EQ(f.identified(), Change::cleared);
+  EXPECT_THAT(f.message(), HasSubstr("0 in a row, 4 of the last 6"));
+  EXPECT_EQ(f.identified(), Change::cleared);  // 3 of the last 6
   EXPECT_EQ(unidentified(metrics, "insufficient_data"), 6.0);
 }
 
