@@ -109,6 +109,8 @@ int run_identifier_daemon(const DaemonOptions& options) {
           if (failures.identified() == WindowFailures::Change::cleared) {
             runtime.set_health(bus::AlertLevel::ok, failures.message());
             runtime.log(failures.message());
+          } else if (failures.failing()) {
+            runtime.set_health(bus::AlertLevel::warn, failures.message());  // its counts move on
           }
         } catch (const Error& e) {
           const ident::WindowFailure failure = ident::window_failure(e);
