@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/no_continuous_equivalent.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_deadbeat.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
@@ -145,7 +146,15 @@ void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions
   model.discrete = realization;
   const IdentificationFamily* family = find_identification_family(e.plant.model);
   if (family && family->add_structure && realization.states() == family->order) {
-    family->add_structure(e, realization, model);
+    try {
+      family->add_structure(e, realization, model);
+    } catch (const NoContinuousEquivalent& error) {
+      // The physical coordinates need Ac = logm(A)/T; the discrete model stays valid as it is.
+      model.no_continuous = error.what();
+      add_warning(model, "no continuous-time model (" + std::string(error.what()) +
+                             "): the discrete model is kept in the realisation's coordinates, without parameters");
+      return;
+    }
     if (o.jackknife_segments > 0) add_jackknife_uncertainty(*family, realize, e, o, model);
   } else {
     add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
@@ -274,6 +283,10 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
 }
 
 }  // namespace detail
+
+void require_method_inputs(const Experiment& e, const std::string& method) {
+  require(identification_method(method, kWho), e);
+}
 
 Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
   if (begin < 0 || end > e.samples() || end - begin < 2)

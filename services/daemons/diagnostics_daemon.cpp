@@ -13,6 +13,7 @@
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/plant_time.hpp"
+#include "services/daemons/window_failures.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -59,6 +60,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics", options.metrics_port);
   auto models = bus->reader<bus::IdentifiedModel>();
   auto sources = bus->reader<bus::PlantSourceState>();
+  auto health = bus->reader<bus::Health>();
   auto alerts = bus->writer<bus::Alert>();
   runtime.ready("trend store " + config.store);
 
@@ -93,10 +95,19 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   };
   auto last_model = std::chrono::steady_clock::now();
   bool stale = false;
+  bool identifier_failing = false;  // its Health says its windows keep failing (window_failures.hpp)
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : sources->take())
       if (s.plant_id == options.plant_id) source = convert::to_source(s.kind);
+    for (const bus::Health& h : health->take()) {
+      if (h.node != options.plant_id + "/identifier") continue;
+      const bool failing = reports_failing_windows(h, options.plant_id);
+      // On the edge only: the next identified window brings the parameters back to OK.
+      if (failing && !identifier_failing)
+        publish(engine.mark_stale(options.plant_id, plant_time.last().value_or(0.0), "the identifier's " + h.message));
+      identifier_failing = failing;
+    }
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();

@@ -1,6 +1,6 @@
 // The whole service as separate processes over DDS (loopback profile, one domain per test):
 // a simulated bearing, then its plant source swapped to the same bearing with R1 +20 %
-// (deploy/config/coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
+// (tests/integration/scenarios/quiet-coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
 // coil 1 resistance, with the identified R1 of about 21 ohm, within a bounded time. Each test
 // takes 10-20 s.
 #include <gmock/gmock.h>
@@ -21,7 +21,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string coil1_hot = std::string(AMBID_SOURCE_DIR) + "/deploy/config/coil1-hot.json";
+const std::string coil1_hot = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/quiet-coil1-hot.json";
 
 void start_all(Stack& stack) {
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
@@ -165,7 +165,7 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   EXPECT_EQ(diverging.status, 1) << diverging.output;
   EXPECT_THAT(diverging.output, HasSubstr("refused the source"));
   const CommandResult status = stack.ambid("status --wait 2");
-  EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
+  EXPECT_THAT(status.output, HasSubstr("quiet-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 4"));
   // Only the plant runs: the stack's other roles are listed as lost (issue 18).
   EXPECT_EQ(status.status, 4) << status.output;
@@ -178,8 +178,9 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
 // unstable, so by Bode's sensitivity integral every input-sensitivity peak exceeds 1.
 TEST(Stack, FrfDaemonPublishesSensitivityPeaksAndZone) {
   Stack stack("stack_frf", 178);
-  std::ofstream(stack.dir() / "frf.json") << R"({"scenario": ")" << AMBID_SOURCE_DIR
-                                          << R"(/deploy/config/nominal-bearing.json", "f_min": 1, "f_max": 1000})";
+  std::ofstream(stack.dir() / "frf.json")
+      << R"({"scenario": ")" << AMBID_SOURCE_DIR
+      << R"(/tests/integration/scenarios/quiet-bearing.json", "f_min": 1, "f_max": 1000})";
   stack.start("plant");
   stack.start("frf");
   std::this_thread::sleep_for(std::chrono::seconds(6));
