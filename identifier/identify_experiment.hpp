@@ -13,6 +13,7 @@
 // The record is split: the first (1 - validation_fraction) is fitted, the rest only validates
 // (fit.nrmse, closed-loop simulation with the recorded controller, closed_loop_validation.hpp).
 // Nothing here stabilises an identified model: an unstable plant comes out unstable.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "core/experiment.hpp"
 #include "core/model_file.hpp"
 #include "identifier/methods.hpp"
+#include "identifier/pem_warm_start.hpp"
 
 namespace ambid::ident {
 
@@ -33,6 +35,9 @@ struct IdentifyOptions {
   Eigen::Index instrument_lags = 0;     // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
   double validation_fraction = 0.25;    // in [0, 0.9]; 0: no validation (fit.nrmse empty)
   Eigen::Index jackknife_segments = 8;  // okid/closed-loop/projection: 0 (no uncertainty) or >= 2
+  // pem: start from a previous fit (e.g. pem_warm_start(the previous window's model)) instead of
+  // the closed-loop, deadbeat-iv and deadbeat starts; converges in a few iterations.
+  std::optional<PemWarmStart> pem_warm_start;
 };
 
 inline constexpr Eigen::Index kDefaultArxOrder = 16;

@@ -58,7 +58,8 @@ const std::vector<IdentificationMethod>& method_registry() {
        true,
        true,
        {"amb1dof_voltage"},
-       "prediction error (Ceres) from the best of closed-loop, deadbeat-iv, deadbeat; noise-consistent",
+       "prediction error (exact sensitivities, QR Levenberg-Marquardt) from the best of closed-loop, deadbeat-iv, "
+       "deadbeat, nominal; noise-consistent",
        detail::fit_pem},
   };
   return methods;
