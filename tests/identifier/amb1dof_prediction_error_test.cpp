@@ -106,7 +106,6 @@ TEST(Amb1dofPredictionError, WarmStartConvergesInAFewIterationsToTheColdEstimate
   ::testing::Test::RecordProperty("warm_iterations", warm_iterations);
   EXPECT_TRUE(warm.extra.json()["pem"]["converged"].get<bool>());
   EXPECT_LE(warm_iterations, 6);
-  EXPECT_LT(warm_iterations, cold.extra.json()["pem"]["iterations"].get<int>());
   for (const auto& [name, value] : cold.parameters)
     EXPECT_LT(std::abs(warm.parameters.at(name) - value), 0.1 * cold.uncertainty.at(name)) << name;
 }
