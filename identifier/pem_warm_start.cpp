@@ -14,7 +14,8 @@ namespace {
 const std::string kWho = "pem warm start";
 
 double number(const nlohmann::json& value, const std::string& where) {
-  if (!value.is_number() || !std::isfinite(value.get<double>())) throw Error(kWho + ": " + where + " is not a finite number");
+  if (!value.is_number() || !std::isfinite(value.get<double>()))
+    throw Error(kWho + ": " + where + " is not a finite number");
   return value.get<double>();
 }
 
@@ -38,7 +39,8 @@ PemWarmStart pem_warm_start(const Model& previous) {
   const nlohmann::json& gain = extra["pem"]["predictor_gain"];
   if (!offset.is_array() || offset.size() != 3) throw Error(kWho + ": extra.pem.offset must hold 3 numbers");
   if (!gain.is_array() || gain.size() != 4) throw Error(kWho + ": extra.pem.predictor_gain must hold 4 rows of 3");
-  for (int i = 0; i < 3; ++i) start.offset(i) = number(offset[std::size_t(i)], "extra.pem.offset[" + std::to_string(i) + "]");
+  for (int i = 0; i < 3; ++i)
+    start.offset(i) = number(offset[std::size_t(i)], "extra.pem.offset[" + std::to_string(i) + "]");
   for (int i = 0; i < 4; ++i) {
     const nlohmann::json& row = gain[std::size_t(i)];
     if (!row.is_array() || row.size() != 3) throw Error(kWho + ": extra.pem.predictor_gain must hold 4 rows of 3");

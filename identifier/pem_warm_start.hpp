@@ -10,8 +10,8 @@
 namespace ambid::ident {
 
 struct PemWarmStart {
-  Eigen::Matrix<double, 9, 1> v = Eigen::Matrix<double, 9, 1>::Zero();          // v1..v9
-  Eigen::Vector3d offset = Eigen::Vector3d::Zero();                             // w of the x'', i1', i2' rows
+  Eigen::Matrix<double, 9, 1> v = Eigen::Matrix<double, 9, 1>::Zero();               // v1..v9
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();                                  // w of the x'', i1', i2' rows
   Eigen::Matrix<double, 4, 3> predictor_gain = Eigen::Matrix<double, 4, 3>::Zero();  // K
 };
 

@@ -67,13 +67,12 @@ LevenbergMarquardtResult levenberg_marquardt(const BlockLeastSquares& problem, c
     bool accepted = false;
     for (int trial = 0; trial < options.max_trials && lambda <= kMaxDamping; ++trial) {
       const Eigen::VectorXd delta = damped_step(R, z, scale, lambda);
-      const double predicted =
-          0.5 * (z.squaredNorm() - (R.triangularView<Eigen::Upper>() * delta - z).squaredNorm());
+      const double predicted = 0.5 * (z.squaredNorm() - (R.triangularView<Eigen::Upper>() * delta - z).squaredNorm());
       const Eigen::VectorXd p = out.p + delta;
-      const double cost = delta.allFinite() && predicted > 0.0 ? problem.cost(p)
-                                                                : std::numeric_limits<double>::infinity();
+      const double cost =
+          delta.allFinite() && predicted > 0.0 ? problem.cost(p) : std::numeric_limits<double>::infinity();
       const double ratio = (out.final_cost - cost) / predicted;
-        if (std::isfinite(cost) && ratio > 1e-4) {
+      if (std::isfinite(cost) && ratio > 1e-4) {
         out.p = p;
         lambda = std::max(kMinDamping, lambda * std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * ratio - 1.0, 3)));
         growth = 2.0;

@@ -42,8 +42,8 @@ struct Amb1dofRecordOptions {
 };
 
 struct Amb1dofRecord {
-  Experiment experiment;       // settle + duration (the PRBS runs throughout)
-  Eigen::Index settled = 0;    // the first sample after the settling
+  Experiment experiment;                   // settle + duration (the PRBS runs throughout)
+  Eigen::Index settled = 0;                // the first sample after the settling
   sim::Amb1dofParameters true_parameters;  // with i0 = i_eq
   std::map<std::string, double> truth;     // v1..v9 of true_parameters
 };
