@@ -249,7 +249,9 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
     fit.initial_state = theta.segment<4>(pem::kInitial);
     fit.predictor_gain = pem::gain_of(theta);
     fit.covariance = scale.head<9>().asDiagonal() * cov_p.topLeftCorner<9, 9>() * scale.head<9>().asDiagonal();
-    fit.residual_rms = problem.weight().cwiseInverse();  // the weights are 1 / rms at the solution
+    const std::optional<Eigen::Vector3d> squares = predictor.squares(theta);
+    if (!squares) throw InsufficientData(kWho + ": the predictor diverges at the solution");
+    fit.residual_rms = (*squares / double(predictor.samples())).cwiseSqrt();
 
     Eigen::Matrix4d A;
     Eigen::Matrix<double, 4, 3> B;

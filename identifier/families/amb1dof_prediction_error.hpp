@@ -7,9 +7,10 @@
 // currents) and a free predictor gain K (4 x 3):
 //   x^[t+1] = Ad(v) x^[t] + Bd(v) u[t] + g(v, w) + K (y[t] - C x^[t]),   x^[0] = x0 (fitted)
 // The residual is the one-step prediction error  e[t] = y[t] - C x^[t]  of every output,
-// weighted by 1 / its rms at the current estimate (re-weighted at every iteration: the fixed
-// point is the maximum-likelihood estimate for independent Gaussian errors of each output).
-// Levenberg-Marquardt with exact derivatives minimises it (amb1dof_predictor.hpp: the forward
+// weighted by 1 / its rms (cold start: re-weighted at every step until within one standard
+// error, whose fixed point is the maximum-likelihood estimate for independent Gaussian errors
+// of each output, then with those weights held to convergence; warm start: the weights of the
+// start held). Levenberg-Marquardt with exact derivatives minimises it (amb1dof_predictor.hpp: the forward
 // sensitivity recursion of the predictor; levenberg_marquardt.hpp in time_domain/: steps by
 // QR of the Jacobian streamed in row blocks, never J'J), until the Gauss-Newton step is below
 // `step_tolerance` standard errors.
@@ -26,6 +27,9 @@
 // the equation error is biased exactly by that feedback. u is the recorded plant input (it
 // needs no noise model of its own: the controller's output is known exactly).
 // Nothing here stabilises the identified plant: only the predictor A - K C is stable.
+// Noise-free data determine no noise model: K is then set by the model error alone (the true
+// plant's nonlinearity) and tends to a deadbeat predictor; the fit takes 30-50 steps, and at
+// small excitation the Jacobian becomes ill-conditioned (v2, v3 against K) and is refused.
 //
 // Uncertainty (one sigma): the sandwich  H^-1 S H^-1,  H^-1 = (J'J)^-1 from the QR factor of
 // the column-equilibrated Jacobian (which also decides rank and conditioning) and S the
