@@ -11,6 +11,7 @@
 #include "core/format/experiment_sidecar.hpp"
 #include "core/format/experiment_text.hpp"
 #include "core/format/json_fields.hpp"
+#include "core/json_text.hpp"
 
 // Required keys: format, plant_model, method, sample_time, discrete (A, B, C, D). Optional,
 // empty when absent: continuous, parameters, physical, uncertainty, fit (and fit.nrmse): a
@@ -159,7 +160,7 @@ Model parse_model(const json& j) {
 }
 
 Model read_model(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
+  const std::string text = read_json_file(path);
   try {
     return parse_model(parse_sidecar_text(text));
   } catch (const Error& e) {

@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -28,17 +27,20 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/experiment_file.hpp"
 #include "core/experiment_io.hpp"
+#include "core/json_text.hpp"
 #include "core/model_file.hpp"
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
-#include "services/report/atomic_file.hpp"
 #include "services/report/figure.hpp"
+#include "services/report/output_lock.hpp"
 #include "services/report/svg.hpp"
 
 namespace ambid::cli {
@@ -65,22 +67,22 @@ struct Input {
 
 bool is_model_file(const std::filesystem::path& path) {
   if (path.extension() != ".json") return false;
-  std::ifstream in(path);
-  if (!in) throw Error(path.string() + ": cannot open");
   nlohmann::json j;
   try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string() + ": not valid JSON: " + e.what());
+    j = parse_json_text(read_json_file(path));
+  } catch (const Error& e) {
+    throw Error(path.string() + ": " + e.what());
   }
   return j.is_object() && j.contains("format") && j["format"] == kModelFormat;
 }
 
 Input model_input(const std::string& file, double start, const std::string& plant_id) {
   const Model m = read_model(file);
-  if (m.plant_model != "amb1dof_voltage")
-    throw Error(file + ": plant_model is '" + m.plant_model +
-                "'; diagnose knows the parameters of amb1dof_voltage only");
+  try {
+    diag::require_diagnostics_piece(m.plant_model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& e) {
+    throw Error(file + ": plant_model is '" + m.plant_model + "': " + e.what());
+  }
   try {
     return {file,
             "model",
@@ -95,6 +97,11 @@ Input experiment_input(const std::string& file, double start, double window, con
                        const std::string& plant_id) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
   const Experiment e = read_experiment(file).experiment;
+  try {
+    diag::require_diagnostics_piece(e.plant.model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& err) {
+    throw Error(file + ": " + err.what());
+  }
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
   Input in{file, "experiment", {}, e};
@@ -180,8 +187,13 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
   return s.str();
 }
 
-void write_trend_plots(const std::filesystem::path& dir, const std::vector<Input>& inputs, std::size_t baseline_windows,
-                       const diag::OfflineDiagnosis& d, double error_fraction) {
+// trend_PARAMETER.svg per parameter: (path, SVG text).
+std::vector<std::pair<std::filesystem::path, std::string>> trend_plots(const std::filesystem::path& dir,
+                                                                       const std::vector<Input>& inputs,
+                                                                       std::size_t baseline_windows,
+                                                                       const diag::OfflineDiagnosis& d,
+                                                                       double error_fraction) {
+  std::vector<std::pair<std::filesystem::path, std::string>> files;
   for (const auto& [key, b] : d.baselines) {
     std::vector<double> tb, vb, tm, vm;
     std::size_t n = 0;
@@ -205,8 +217,13 @@ void write_trend_plots(const std::filesystem::path& dir, const std::vector<Input
     figure.title = key.first + ": " + key.second + " (" + std::string(diag::to_string(d.final_levels.at(key))) + ")";
     figure.height = 400.0;
     figure.axes = {axes};
-    report::write_file_atomically(dir / ("trend_" + key.second + ".svg"), report::render_svg(figure));
+    files.emplace_back(dir / ("trend_" + key.second + ".svg"), report::render_svg(figure));
   }
+  return files;
+}
+
+void remove_store(const std::filesystem::path& store) {
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(store.string() + suffix);
 }
 
 void run(const DiagnoseArguments& a) {
@@ -234,7 +251,7 @@ void run(const DiagnoseArguments& a) {
                 " window(s); the baseline needs at least " + std::to_string(diag::kMinLearningWindows) +
                 " (a shorter --window or a larger --baseline)");
   const std::filesystem::path dir(a.out);
-  std::filesystem::create_directories(dir);
+  const report::OutputLock lock(dir);
   diag::EngineConfig config;
   // Fault signatures of the loop the records came from (the first experiment's plant and
   // controller); model files alone get those of the loop `ambid sim` runs.
@@ -247,11 +264,30 @@ void run(const DiagnoseArguments& a) {
     }
     break;
   }
-  const diag::OfflineDiagnosis d = diag::diagnose_offline(windows, baseline_windows, dir / "trends.sqlite", config);
-  report::write_file_atomically(dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n");
+  // The new trend store is built beside the old one and every output is complete before any
+  // replaces its predecessor: a failed run (a full disk) leaves the previous run's files as they were.
+  const std::filesystem::path store = dir / "trends.sqlite", fresh = dir / ".trends.sqlite.new";
+  diag::OfflineDiagnosis d;
+  try {
+    d = diag::diagnose_offline(windows, baseline_windows, fresh, config);
+  } catch (...) {
+    remove_store(fresh);
+    throw;
+  }
   const std::string summary = summary_text(a, inputs, baseline_windows, d);
-  report::write_file_atomically(dir / "summary.txt", summary);
-  write_trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction);
+  std::vector<std::pair<std::filesystem::path, std::string>> files = {
+      {dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n"},
+      {dir / "summary.txt", summary}};
+  for (auto& plot : trend_plots(dir, inputs, baseline_windows, d, config.policy.error_fraction))
+    files.push_back(std::move(plot));
+  try {
+    write_files_atomically(files);
+  } catch (...) {
+    remove_store(fresh);
+    throw;
+  }
+  remove_store(store);  // with its journal files, which must not be applied to the new store
+  std::filesystem::rename(fresh, store);
   std::cout << summary << "wrote " << (dir / "diagnosis.json").string()
             << ", summary.txt, trend_*.svg, trends.sqlite\n";
 }

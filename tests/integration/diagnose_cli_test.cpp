@@ -3,7 +3,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -117,8 +122,8 @@ TEST(DiagnoseCli, StrongAmplifierTwoIsAnErrorAndNothingElse) {
 
 // Model files (ambid-model/1): five nominal ones (0.3 % scatter) form the baseline; then R1
 // +20 % is an ERROR of coil 1 resistance.
-TEST(DiagnoseCli, AcceptsModelFiles) {
-  const fs::path dir = fresh_dir("diagnose_models");
+// Seven model files of a bearing whose R1 reads +20 % from the sixth on (5 baseline windows).
+std::vector<std::string> write_model_files(const fs::path& dir) {
   const std::vector<double> wobble = {1.0, 1.003, 0.997, 1.002, 0.998, 1.001, 0.999};
   std::vector<std::string> files;
   for (std::size_t i = 0; i < wobble.size(); ++i) {
@@ -141,6 +146,12 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
     files.push_back((dir / ("model" + std::to_string(i) + ".json")).string());
     write_json(files.back(), m);
   }
+  return files;
+}
+
+TEST(DiagnoseCli, AcceptsModelFiles) {
+  const fs::path dir = fresh_dir("diagnose_models");
+  const std::vector<std::string> files = write_model_files(dir);
   const auto r = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
   const nlohmann::json d = read_json(dir / "out" / "diagnosis.json");
@@ -165,6 +176,44 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   EXPECT_NE(bad.status, 0);
   EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Issue 18: a run that fails leaves the previous outputs and trend store as they were (the
+// store used to be deleted first), and a second run into a folder being written is refused.
+TEST(DiagnoseCli, AFailedOrConcurrentRunLeavesThePreviousOutputs) {
+  const fs::path dir = fresh_dir("diagnose_atomic");
+  const std::string run = "diagnose" + joined(write_model_files(dir)) + " --baseline 5 --out " + (dir / "out").string();
+  ASSERT_EQ(run_ambid(run).status, 0);
+  const std::string store = file_text(dir / "out" / "trends.sqlite"), summary = file_text(dir / "out" / "summary.txt");
+  ASSERT_GT(store.size(), 0u);
+
+  // Another run holds the folder: refused, nothing touched.
+  {
+    const int fd = ::open((dir / "out" / ".ambid-lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const auto r = run_ambid(run);
+    ::close(fd);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("out is being written by another ambid run"));
+  }
+  // The outputs cannot be replaced (diagnosis.json is a directory now): the run fails after
+  // the diagnosis, the previous store and summary stay, no new store is left behind.
+  fs::remove(dir / "out" / "diagnosis.json");
+  fs::create_directories(dir / "out" / "diagnosis.json" / "blocker");
+  const auto failed = run_ambid(run);
+  EXPECT_EQ(failed.status, 1) << failed.output;
+  EXPECT_EQ(file_text(dir / "out" / "trends.sqlite"), store);
+  EXPECT_EQ(file_text(dir / "out" / "summary.txt"), summary);
+  EXPECT_FALSE(fs::exists(dir / "out" / ".trends.sqlite.new"));
+  fs::remove_all(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(run_ambid(run).status, 0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "out" / "diagnosis.json"));
 }
 
 TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
@@ -199,7 +248,8 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     const auto r = run_ambid("diagnose" + joined(files) + out);
     EXPECT_NE(r.status, 0);
     EXPECT_THAT(r.output, HasSubstr("hot5.json"));
-    EXPECT_THAT(r.output, HasSubstr("no physical value of R1"));  // closed-loop gives no amb1dof physics
+    // Refused before any window is identified: diagnostics knows no fault signatures of it.
+    EXPECT_THAT(r.output, HasSubstr("diagnose: unknown plant 'lamstf' (known: amb1dof_voltage, maglev1coil_voltage)"));
   }
   {
     nlohmann::json sidecar = read_json(files[3]);
