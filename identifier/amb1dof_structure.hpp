@@ -34,6 +34,10 @@ struct Amb1dofNominal {
   double L1 = 0.0, L2 = 0.0, m = 0.0;
 };
 Amb1dofNominal amb1dof_nominal(const Experiment& experiment, const std::string& who);
+// v1..v9 of the nominal plant the experiment's sidecar describes (seed 000 eq. 4 at x = 0,
+// i1 = i2 = i0): the model the controller was designed on, a start that needs no data. Throws
+// Error (prefixed with `who`) naming a missing parameter.
+Eigen::Matrix<double, 9, 1> amb1dof_nominal_structure(const Experiment& experiment, const std::string& who);
 
 struct Amb1dofPhysicalModel {
   DiscreteSystem discrete;      // physical coordinates, C = [1 0 0 0; 0 0 1 0; 0 0 0 1]

@@ -197,6 +197,54 @@ void require(const IdentificationMethod& method, const Experiment& e) {
                 "' needs the controller that closed the loop; the experiment has no controller");
 }
 
+// Starts from `closed-loop`, `deadbeat-iv`, `deadbeat` (those that succeed) and the nominal
+// model, then the prediction-error refinement from the best of them; or from
+// options.pem_warm_start alone.
+Amb1dofPredictionErrorFit pem_fit(const Experiment& e, const IdentifyOptions& o, const LoopSignals& s,
+                                  std::string& start_name) {
+  if (o.pem_warm_start) {
+    start_name = "warm";
+    return fit_amb1dof_prediction_error_from(s.y, s.u, s.r, e.sample_time, *o.pem_warm_start);
+  }
+  std::vector<std::string> start_names, failures;
+  std::vector<Eigen::Matrix<double, 9, 1>> starts;
+  auto try_start = [&](const std::string& name, auto&& estimate) {
+    try {
+      const Eigen::Matrix<double, 9, 1> v = structure_vector(estimate());
+      // One unusable start must not sink the others (the fit refuses such starts).
+      if (!v.allFinite() || (v.array() == 0.0).any()) throw Error("v1..v9 not finite or with a zero entry");
+      starts.push_back(v);
+      start_names.push_back(name);
+    } catch (const Error& error) {
+      failures.push_back(name + ": " + error.what());
+    }
+  };
+  try_start("closed-loop", [&] {
+    Model start;
+    add_amb1dof_structure(e, realize_closed_loop(e, o, {}), start);
+    return start.parameters;
+  });
+  try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });
+  try_start("deadbeat", [&] { return identify_amb1dof_deadbeat(e, DeadbeatOptions{}).parameters; });
+  // The sidecar's nominal model: the only start without data-driven bias, and the one that
+  // remains when a short window leaves closed-loop far off and the deadbeat starts do not
+  // apply (a decentralised controller).
+  try {
+    starts.push_back(amb1dof_nominal_structure(e, kWho));
+    start_names.push_back("nominal");
+  } catch (const Error& error) {
+    failures.push_back(std::string("nominal: ") + error.what());
+  }
+  if (starts.empty()) {
+    std::string all;
+    for (const auto& f : failures) all += (all.empty() ? "" : "; ") + f;
+    throw InsufficientData(kWho + ": method 'pem' found no starting estimate (" + all + ")");
+  }
+  Amb1dofPredictionErrorFit fit = fit_amb1dof_prediction_error(s.y, s.u, s.r, e.sample_time, starts);
+  start_name = start_names[std::size_t(fit.start_index)];
+  return fit;
+}
+
 }  // namespace
 
 namespace detail {
@@ -226,38 +274,12 @@ void fit_greybox(const Experiment& e, const IdentifyOptions& o, Model& model) {
   find_identification_family(e.plant.model)->greybox(e, o, model);
 }
 
-// Starts from `closed-loop`, `deadbeat-iv` and `deadbeat` (those that succeed), then the
-// prediction-error refinement from the best of them.
 void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
   require_four_states(o);
   const LoopSignals s = signals_of(e);
   controller_of(e, s);  // the starts need it without feedthrough: refuse early
-  std::vector<std::string> start_names, failures;
-  std::vector<Eigen::Matrix<double, 9, 1>> starts;
-  auto try_start = [&](const std::string& name, auto&& estimate) {
-    try {
-      const Eigen::Matrix<double, 9, 1> v = structure_vector(estimate());
-      // One unusable start must not sink the others (the fit refuses such starts).
-      if (!v.allFinite() || (v.array() == 0.0).any()) throw Error("v1..v9 not finite or with a zero entry");
-      starts.push_back(v);
-      start_names.push_back(name);
-    } catch (const Error& error) {
-      failures.push_back(name + ": " + error.what());
-    }
-  };
-  try_start("closed-loop", [&] {
-    Model start;
-    add_amb1dof_structure(e, realize_closed_loop(e, o, {}), start);
-    return start.parameters;
-  });
-  try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });
-  try_start("deadbeat", [&] { return identify_amb1dof_deadbeat(e, DeadbeatOptions{}).parameters; });
-  if (starts.empty()) {
-    std::string all;
-    for (const auto& f : failures) all += (all.empty() ? "" : "; ") + f;
-    throw InsufficientData(kWho + ": method 'pem' found no starting estimate (" + all + ")");
-  }
-  const Amb1dofPredictionErrorFit fit = fit_amb1dof_prediction_error(s.y, s.u, s.r, e.sample_time, starts);
+  std::string start_name;
+  const Amb1dofPredictionErrorFit fit = pem_fit(e, o, s, start_name);
   model.discrete = fit.discrete;
   model.continuous = fit.continuous;
   const Amb1dofNominal nominal = amb1dof_nominal(e, kWho);
@@ -273,12 +295,17 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
   }
   model.extra.json()["structure_deviation"] = 0.0;  // the structure of eq. (4) by construction
   if (!fit.converged)
-    add_warning(model, "pem: the solver stopped at its iteration limit before converging (" +
-                           std::to_string(fit.iterations) + " iterations)");
-  model.extra.json()["pem"] = {{"start", start_names[std::size_t(fit.start_index)]},
+    add_warning(model, "pem: the solver stopped before converging after " + std::to_string(fit.iterations) +
+                           " iterations: " + fit.termination);
+  nlohmann::json gain = nlohmann::json::array();
+  for (Index i = 0; i < 4; ++i)
+    gain.push_back({fit.predictor_gain(i, 0), fit.predictor_gain(i, 1), fit.predictor_gain(i, 2)});
+  model.extra.json()["pem"] = {{"start", start_name},
                                {"iterations", fit.iterations},
+                               {"converged", fit.converged},
                                {"condition_number", fit.condition_number},
                                {"offset", {fit.offset(0), fit.offset(1), fit.offset(2)}},
+                               {"predictor_gain", std::move(gain)},
                                {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
 }
 

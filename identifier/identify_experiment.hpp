@@ -17,6 +17,7 @@
 // eigenvalue on the closed negative real axis, as noise can put one there), the model keeps
 // that discrete realisation in its own coordinates, with Model::no_continuous saying why and
 // no parameters or physical quantities; no Error is thrown for it.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "core/experiment.hpp"
 #include "core/model_file.hpp"
 #include "identifier/methods.hpp"
+#include "identifier/pem_warm_start.hpp"
 
 namespace ambid::ident {
 
@@ -37,6 +39,9 @@ struct IdentifyOptions {
   Eigen::Index instrument_lags = 0;     // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
   double validation_fraction = 0.25;    // in [0, 0.9]; 0: no validation (fit.nrmse empty)
   Eigen::Index jackknife_segments = 8;  // okid/closed-loop/projection: 0 (no uncertainty) or >= 2
+  // pem: start from a previous fit (e.g. pem_warm_start(the previous window's model)) instead of
+  // the closed-loop, deadbeat-iv and deadbeat starts; converges in a few iterations.
+  std::optional<PemWarmStart> pem_warm_start;
 };
 
 inline constexpr Eigen::Index kDefaultArxOrder = 16;

@@ -40,7 +40,8 @@ const std::vector<IdentificationMethod>& method_registry() {
       {"projection", false, true, false, "projection filters with unknown feedback uf = u - r (Lee ch. 4)",
        detail::fit_projection},
       {"pem", true, true, true,
-       "prediction error (Ceres) from the best of closed-loop, deadbeat-iv, deadbeat; noise-consistent",
+       "prediction error (exact sensitivities, QR Levenberg-Marquardt) from the best of closed-loop, deadbeat-iv, "
+       "deadbeat, nominal; noise-consistent",
        detail::fit_pem},
       {"greybox", false, false, true,
        "physical parameters on the family's nonlinear model from x, i, u (no controller or r needed)",

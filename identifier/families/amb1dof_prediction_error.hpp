@@ -7,11 +7,18 @@
 // currents) and a free predictor gain K (4 x 3):
 //   x^[t+1] = Ad(v) x^[t] + Bd(v) u[t] + g(v, w) + K (y[t] - C x^[t]),   x^[0] = x0 (fitted)
 // The residual is the one-step prediction error  e[t] = y[t] - C x^[t]  of every output,
-// weighted by 1 / its rms. Ceres (Levenberg-Marquardt, automatic derivatives through the
-// matrix exponential and the whole predictor) minimises it, from the given starting estimate
-// whose predictor has the lowest cost (the next one if the solver fails). K starts from the Kalman
-// gain of the starting model (Riccati iteration, no process noise): a stable predictor even
-// though the plant is unstable.
+// weighted by 1 / its rms (cold start: re-weighted at every step until within one standard
+// error, whose fixed point is the maximum-likelihood estimate for independent Gaussian errors
+// of each output, then with those weights held to convergence; warm start: the weights of the
+// start held). Levenberg-Marquardt with exact derivatives minimises it (amb1dof_predictor.hpp: the forward
+// sensitivity recursion of the predictor; levenberg_marquardt.hpp in time_domain/: steps by
+// QR of the Jacobian streamed in row blocks, never J'J), until the Gauss-Newton step is below
+// `step_tolerance` standard errors.
+// Cold start: from the given starting estimate whose predictor has the lowest cost (the next
+// one if the solver fails); K starts from the Kalman gain of the starting model (Riccati
+// iteration, no process noise): a stable predictor even though the plant is unstable. Warm
+// start: from a previous fit's v, w and K (pem_warm_start.hpp). x0 starts at the first sample
+// (x' = 0) and is fitted either way (the errors are linear in it).
 //
 // Consistency in closed loop (the direct prediction-error method): the innovations form with
 // a free K contains the true noise model (white sensor noise, and process noise through the
@@ -20,6 +27,9 @@
 // the equation error is biased exactly by that feedback. u is the recorded plant input (it
 // needs no noise model of its own: the controller's output is known exactly).
 // Nothing here stabilises the identified plant: only the predictor A - K C is stable.
+// Noise-free data determine no noise model: K is then set by the model error alone (the true
+// plant's nonlinearity) and tends to a deadbeat predictor; the fit takes 30-50 steps, and at
+// small excitation the Jacobian becomes ill-conditioned (v2, v3 against K) and is refused.
 //
 // Uncertainty (one sigma): the sandwich  H^-1 S H^-1,  H^-1 = (J'J)^-1 from the QR factor of
 // the column-equilibrated Jacobian (which also decides rank and conditioning) and S the
@@ -27,16 +37,19 @@
 // Assumption: the prediction errors are stationary and correlated over much less than a
 // block; for white prediction errors S = sigma^2 J'J and this is the usual (J'J)^-1 sigma^2.
 // It does not include a model-structure error (e.g. the nonlinearity at large excitation).
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/state_space.hpp"
+#include "identifier/pem_warm_start.hpp"
 
 namespace ambid::ident {
 
 struct Amb1dofPredictionErrorOptions {
-  int max_iterations = 60;         // Levenberg-Marquardt iterations per pass
+  int max_iterations = 60;         // Levenberg-Marquardt iterations per pass (of two)
+  double step_tolerance = 0.05;    // converged: the Gauss-Newton step is below this many standard errors
   double max_condition = 1e8;      // of the column-equilibrated Jacobian; beyond it: InsufficientData
   Eigen::Index score_block = 200;  // samples per block of the score covariance
   Eigen::Index min_blocks = 10;    // fewer blocks in the record: InsufficientData
@@ -52,10 +65,11 @@ struct Amb1dofPredictionErrorFit {
   DiscreteSystem discrete;                     // its zero-order hold at the sample time
   Eigen::Vector3d residual_rms;                // prediction error per output [x, i1, i2], SI units
   double condition_number = 0.0;               // column-equilibrated Jacobian at the solution
-  int iterations = 0;                          // both passes
-  int start_index = 0;                         // the start that went on
-  bool converged = false;                      // false: the second pass stopped at max_iterations
-  double start_cost = 0.0, final_cost = 0.0;   // of the second pass (weighted, 0.5 sum e^2)
+  int iterations = 0;                          // accepted Levenberg-Marquardt steps
+  int start_index = 0;                         // the start that went on (0 for a warm start)
+  bool converged = false;                      // false: stopped at max_iterations or without progress
+  std::string termination;                     // why the solver stopped
+  double start_cost = 0.0, final_cost = 0.0;   // weighted 0.5 sum e^2: at the start (its weights), at the end
 };
 
 // y: samples x 3 ([x, i1, i2] deviations), u: samples x 2 ([u1, u2] deviations, the recorded
@@ -70,5 +84,12 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
                                                        const Eigen::MatrixXd& r, double sample_time,
                                                        const std::vector<Eigen::Matrix<double, 9, 1>>& v_starts,
                                                        const Amb1dofPredictionErrorOptions& options = {});
+
+// The same from a previous fit (warm start); the checks of y, u and r are the same, and the
+// start must be finite with every v non-zero (Error otherwise).
+Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u,
+                                                            const Eigen::MatrixXd& r, double sample_time,
+                                                            const PemWarmStart& start,
+                                                            const Amb1dofPredictionErrorOptions& options = {});
 
 }  // namespace ambid::ident

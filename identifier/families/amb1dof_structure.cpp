@@ -39,15 +39,34 @@ Eigen::Matrix<double, 9, 1> amb1dof_physical_scale(double L1, double L2, double 
   return scale;
 }
 
+namespace {
+
+double nominal_parameter(const Experiment& e, const std::string& name, const std::string& who) {
+  const auto it = e.plant.parameters.find(name);
+  if (it == e.plant.parameters.end()) throw Error(who + ": plant.parameters." + name + " is missing");
+  return it->second;
+}
+
+}  // namespace
+
 Amb1dofNominal amb1dof_nominal(const Experiment& e, const std::string& who) {
-  auto parameter = [&](const std::string& name) {
-    const auto it = e.plant.parameters.find(name);
-    if (it == e.plant.parameters.end()) throw Error(who + ": plant.parameters." + name + " is missing");
-    return it->second;
-  };
+  auto parameter = [&](const std::string& name) { return nominal_parameter(e, name, who); };
   const double x0 = parameter("x0");
   return {parameter("Ls1") + parameter("K1") / (2.0 * x0), parameter("Ls2") + parameter("K2") / (2.0 * x0),
           parameter("m")};
+}
+
+Eigen::Matrix<double, 9, 1> amb1dof_nominal_structure(const Experiment& e, const std::string& who) {
+  auto parameter = [&](const std::string& name) { return nominal_parameter(e, name, who); };
+  const Amb1dofNominal n = amb1dof_nominal(e, who);
+  const double x0 = parameter("x0"), i0 = parameter("i0");
+  // Force slopes of each coil at the operating point: ks_j = K_j i0^2 / (2 x0^3), kr_j = K_j i0 / (2 x0^2).
+  const double ks = (parameter("K1") + parameter("K2")) * i0 * i0 / (2.0 * x0 * x0 * x0);
+  const double kr1 = parameter("K1") * i0 / (2.0 * x0 * x0), kr2 = parameter("K2") * i0 / (2.0 * x0 * x0);
+  Eigen::Matrix<double, 9, 1> v;
+  v << ks / n.m, kr1 / n.m, kr2 / n.m, kr1 / n.L1, parameter("R1") / n.L1, kr2 / n.L2, parameter("R2") / n.L2,
+      parameter("kw1") / n.L1, parameter("kw2") / n.L2;
+  return v;
 }
 
 namespace {

@@ -1,0 +1,94 @@
+#include "support/amb1dof_records.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+
+#include "core/error.hpp"
+#include "plant_sim/amb1dof_physical.hpp"
+#include "plant_sim/amb1dof_voltage.hpp"
+#include "plant_sim/closed_loop.hpp"
+#include "plant_sim/observer_controller.hpp"
+#include "plant_sim/scenario.hpp"
+
+namespace ambid::test_support {
+namespace {
+
+Eigen::MatrixXd diagonal(std::initializer_list<double> values) {
+  Eigen::VectorXd d(Eigen::Index(values.size()));
+  Eigen::Index i = 0;
+  for (const double v : values) d(i++) = v;
+  return d.asDiagonal();
+}
+
+// Other weights than amb1dof_observer_controller_options: deviations of 20 um, 20 mm/s and
+// 50 mA accepted (a softer regulator), the integral three times looser, more process noise
+// assumed in the velocity and current rows and observer poles within radius 0.9.
+sim::ObserverControllerOptions other_observer_options() {
+  sim::ObserverControllerOptions o;
+  o.integral_outputs = {"x"};
+  o.Q = diagonal({1.0 / (2e-5 * 2e-5), 1.0 / (2e-2 * 2e-2), 1.0 / (0.05 * 0.05), 1.0 / (0.05 * 0.05)});
+  o.Q_integral = diagonal({1.0 / (3e-4 * 3e-4)});
+  o.R = diagonal({1.0, 1.0});
+  o.W = diagonal({1e-12, 1e-5, 1e-3, 1e-3});
+  o.V = diagonal({1e-12, 1e-4, 1e-4});
+  o.observer_pole_radius = 0.9;
+  return o;
+}
+
+sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
+  const std::vector<std::string>& known = amb1dof_record_controllers();
+  if (std::find(known.begin(), known.end(), o.controller) == known.end())
+    throw Error("amb1dof records: unknown controller '" + o.controller + "' (known: lqr, pid, observer)");
+  sim::ScenarioOptions s;
+  s.controller = o.controller == "pid" ? "pid" : "lqr";
+  s.true_parameters = o.true_parameters;
+  s.sample_time = o.sample_time;
+  s.duration = o.settle + o.duration;
+  s.seed = o.seed;
+  if (excited) {
+    s.amplitude = o.amplitude;
+    s.position_noise = o.position_noise;
+    s.current_noise = o.current_noise;
+  } else {
+    s.excitation = "none";
+    s.duration = std::max(s.duration, 1.0);  // the slowest settling (the PID's integral) is ~50 ms
+  }
+  sim::Scenario scenario = sim::build_scenario(s);
+  if (o.controller == "observer") {
+    const sim::Amb1dofVoltage nominal(sim::Amb1dofParameters::nominal());
+    scenario.header.controller = sim::design_observer_controller(
+        nominal.linearize(), o.sample_time, scenario.header.u_names, scenario.header.y_names, other_observer_options());
+  }
+  scenario.options.substeps = o.substeps;
+  return scenario;
+}
+
+}  // namespace
+
+const std::vector<std::string>& amb1dof_record_controllers() {
+  static const std::vector<std::string> names = {"lqr", "pid", "observer"};
+  return names;
+}
+
+Amb1dofRecord simulate_amb1dof_record(const Amb1dofRecordOptions& o) {
+  Amb1dofRecord record;
+  // The rest point: the same loop without excitation or noise, run to its end.
+  const sim::Scenario rest = scenario_of(o, false);
+  const Experiment settled = sim::run_closed_loop(*rest.truth, rest.header, rest.options);
+  const Eigen::RowVectorXd last = settled.y.bottomRows(1);
+  if (!(std::abs(last(0)) < 1e-10) || !(std::abs(last(1) - last(2)) < 1e-8 * last(1)))
+    throw Error("amb1dof records: the '" + o.controller + "' loop has not come to rest at x = 0, i1 = i2 (x = " +
+                std::to_string(last(0)) + " m, i1 - i2 = " + std::to_string(last(1) - last(2)) + " A)");
+  record.true_parameters = sim::Amb1dofParameters::nominal();
+  for (const auto& [name, value] : o.true_parameters) record.true_parameters.set(name, value);
+  record.true_parameters.i0 = last(1);
+  record.truth = sim::amb1dof_structure_parameters(record.true_parameters);
+
+  const sim::Scenario excited = scenario_of(o, true);
+  record.experiment = sim::run_closed_loop(*excited.truth, excited.header, excited.options);
+  record.settled = Eigen::Index(std::llround(o.settle / o.sample_time));
+  return record;
+}
+
+}  // namespace ambid::test_support

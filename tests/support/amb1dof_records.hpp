@@ -1,0 +1,54 @@
+#pragma once
+// Closed-loop records of the amb1dof_voltage bearing that ambid's estimators did not generate,
+// with their true linear models: for tests of every folder (identifier, diagnostics) that
+// need an independent truth.
+//
+// Independent of the estimators' model: the NONLINEAR plant (force ~ (i / gap)^2, inductance
+// ~ 1 / gap) integrated by RK4 with `substeps` steps per sample (the estimators use the exact
+// zero-order hold of a linear model), under one of three controllers designed on the nominal
+// model:
+//   "lqr"       ambid's LQR + observer with integral action (plant_sim scenario "lqr");
+//   "pid"       a decentralised PID on x with proportional current loops (scenario "pid");
+//   "observer"  an LQR + observer designed with other weights (a softer regulator, observer
+//               poles within radius 0.9), see the definition.
+// Truth: the true plant linearised where its closed loop settles. Every controller integrates
+// x, so the loop comes to rest at x = 0 with both bias currents at i_eq (which a coil or
+// amplifier fault moves, and ks, kr with it); v1..v9 are seed 000 eq. (4) of the true
+// parameters with i0 = i_eq, i_eq read from an unexcited, noise-free run of the same loop.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/experiment.hpp"
+#include "plant_sim/amb1dof_parameters.hpp"
+
+namespace ambid::test_support {
+
+// "lqr", "pid", "observer".
+const std::vector<std::string>& amb1dof_record_controllers();
+
+struct Amb1dofRecordOptions {
+  std::string controller = "lqr";
+  std::map<std::string, double> true_parameters;  // overrides of the nominal parameters (e.g. R1)
+  double amplitude = 1.0;                         // PRBS on each input (V)
+  double duration = 2.0;                          // s, after the settling
+  double settle = 0.5;                            // s of settling at the start of the record
+  double position_noise = 0.0;                    // m rms on x
+  double current_noise = 0.0;                     // A rms on i1 and i2
+  int substeps = 16;                              // RK4 steps per sample
+  double sample_time = 1e-4;
+  std::uint64_t seed = 1;
+};
+
+struct Amb1dofRecord {
+  Experiment experiment;                   // settle + duration (the PRBS runs throughout)
+  Eigen::Index settled = 0;                // the first sample after the settling
+  sim::Amb1dofParameters true_parameters;  // with i0 = i_eq
+  std::map<std::string, double> truth;     // v1..v9 of true_parameters
+};
+
+// Throws Error for an unknown controller (naming the known ones) and what the simulator throws.
+Amb1dofRecord simulate_amb1dof_record(const Amb1dofRecordOptions& options);
+
+}  // namespace ambid::test_support
