@@ -9,6 +9,7 @@
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_deadbeat.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
+#include "identifier/time_domain/arx_order.hpp"
 #include "identifier/time_domain/closed_loop_id.hpp"
 #include "identifier/time_domain/closed_loop_validation.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
@@ -34,6 +35,10 @@ LoopSignals signals_of(const Experiment& e) {
 KnownController controller_of(const Experiment& e, const LoopSignals& s) {
   return known_controller(*e.controller, s.u_names, s.y_names);  // refuses feedthrough from u
 }
+
+// The ARX -> Markov -> ERA methods refuse a model order whose last Hankel singular value is
+// not twice the next: such a state is the noise's, not the plant's (EraOptions::min_gap).
+constexpr double kEraMinGap = 2.0;
 
 Index model_order(const Experiment& e, const IdentifyOptions& o) {
   if (o.order < 0) throw Error(kWho + ": order must be >= 0, got " + std::to_string(o.order));
@@ -93,6 +98,7 @@ DiscreteSystem realize_okid(const Experiment& e, const IdentifyOptions& o, const
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
+  eo.min_gap = kEraMinGap;
   return era(markov_from_arx(arx, o.markov_count).system, e.sample_time, eo).system;
 }
 
@@ -105,6 +111,7 @@ Options arx_era_options(const Experiment& e, const IdentifyOptions& o, const Bre
   out.markov_count = o.markov_count;
   out.sample_time = e.sample_time;
   out.era.order = model_order(e, o);
+  out.era.min_gap = kEraMinGap;
   return out;
 }
 
@@ -152,7 +159,20 @@ void add_jackknife_uncertainty(Realize realize, const Experiment& e, const Ident
   model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
 }
 
-void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
+// `o` with the ARX order and the Markov count of the ARX -> Markov -> ERA methods resolved for
+// the record `e` (arx_order.hpp); the jackknife's shorter sub-records keep them.
+IdentifyOptions with_arx_defaults(const Experiment& e, IdentifyOptions o) {
+  if (o.arx_order == 0) {
+    const LoopSignals s = signals_of(e);
+    o.arx_order = default_arx_order(e.samples(), s.y.cols(), s.u.cols());
+  }
+  if (o.markov_count == 0) o.markov_count = default_markov_count(o.arx_order);
+  return o;
+}
+
+void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& options, Model& model) {
+  const IdentifyOptions o = with_arx_defaults(e, options);
+  model.extra.json()["arx"] = {{"order", o.arx_order}, {"markov_count", o.markov_count}};
   const DiscreteSystem realization = realize(e, o, {});
   model.discrete = realization;
   if (is_amb1dof(e) && realization.states() == 4) {
@@ -241,7 +261,7 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
   };
   try_start("closed-loop", [&] {
     Model start;
-    add_amb1dof_structure(e, realize_closed_loop(e, o, {}), start);
+    add_amb1dof_structure(e, realize_closed_loop(e, with_arx_defaults(e, o), {}), start);
     return start.parameters;
   });
   try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });
@@ -316,8 +336,6 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
                            " skipped, leave nothing to fit");
   const Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
   IdentifyOptions resolved = o;
-  if (resolved.arx_order == 0) resolved.arx_order = kDefaultArxOrder;
-  if (resolved.markov_count == 0) resolved.markov_count = kDefaultMarkovCount;
   if (resolved.instrument_lags == 0) resolved.instrument_lags = kDefaultInstrumentLags;
 
   Model model;

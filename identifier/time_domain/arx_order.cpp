@@ -1,0 +1,27 @@
+#include "identifier/time_domain/arx_order.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+
+namespace ambid::ident {
+
+Eigen::Index default_arx_order(Eigen::Index samples, Eigen::Index outputs, Eigen::Index inputs) {
+  if (outputs < 1 || inputs < 0)
+    throw Error("ARX order: needs at least one output and no negative input count, got " + std::to_string(outputs) +
+                " outputs and " + std::to_string(inputs) + " inputs");
+  const Eigen::Index per_lag = outputs + inputs;
+  const Eigen::Index most = samples / (kArxRowsPerParameter * per_lag);
+  if (most < 1)
+    throw InsufficientData(
+        "ARX order: " + std::to_string(samples) + " samples give fewer than " + std::to_string(kArxRowsPerParameter) +
+        " equations per coefficient of an order-1 ARX model (" + std::to_string(per_lag) + " coefficients per lag)");
+  const auto grown = static_cast<Eigen::Index>(std::ceil(kArxOrderPerLogSample * std::log(double(samples))));
+  return std::min(grown, most);
+}
+
+Eigen::Index default_markov_count(Eigen::Index arx_order) { return std::max(kMinMarkovCount, 2 * arx_order); }
+
+}  // namespace ambid::ident
