@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -159,21 +161,49 @@ void add_jackknife_uncertainty(Realize realize, const Experiment& e, const Ident
   model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
 }
 
-// `o` with the ARX order and the Markov count of the ARX -> Markov -> ERA methods resolved for
-// the record `e` (arx_order.hpp); the jackknife's shorter sub-records keep them.
-IdentifyOptions with_arx_defaults(const Experiment& e, IdentifyOptions o) {
+// `o` with the ARX order of the ARX -> Markov -> ERA methods resolved for the record `e`
+// (arx_order.hpp); the jackknife's shorter sub-records keep it.
+IdentifyOptions with_arx_order(const Experiment& e, IdentifyOptions o) {
   if (o.arx_order == 0) {
     const LoopSignals s = signals_of(e);
     o.arx_order = default_arx_order(e.samples(), s.y.cols(), s.u.cols());
   }
-  if (o.markov_count == 0) o.markov_count = default_markov_count(o.arx_order);
   return o;
 }
 
+// A sampled continuous plant has no eigenvalue on the closed negative real axis (exp(s T) of a
+// real s is positive); one there is a state of the noise, not of the plant.
+std::optional<double> negative_real_eigenvalue(const DiscreteSystem& realization) {
+  for (const std::complex<double>& z : poles(realization))
+    if (z.real() <= 0.0 && std::abs(z.imag()) <= 1e-12 * std::max(1.0, std::abs(z))) return z.real();
+  return std::nullopt;
+}
+
+// realize() with the given Markov count, or without one with default_markov_counts() in turn
+// until ERA finds the model order determined and no state on the negative real axis;
+// `o.markov_count` becomes the count used. Throws InsufficientData when none does.
+DiscreteSystem realize_determined(Realize realize, const Experiment& e, IdentifyOptions& o) {
+  if (o.markov_count > 0) return realize(e, o, {});
+  std::string last;
+  for (const Index count : default_markov_counts()) {
+    o.markov_count = count;
+    try {
+      const DiscreteSystem realization = realize(e, o, {});
+      const std::optional<double> z = negative_real_eigenvalue(realization);
+      if (!z) return realization;
+      last = "a state at z = " + std::to_string(*z) + " on the negative real axis, of no sampled plant";
+    } catch (const UndeterminedOrder& error) {
+      last = error.what();
+    }
+  }
+  throw InsufficientData(kWho + ": the data do not determine a model of this order: with " +
+                         std::to_string(o.markov_count) + " Markov parameters (the most tried) " + last);
+}
+
 void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& options, Model& model) {
-  const IdentifyOptions o = with_arx_defaults(e, options);
+  IdentifyOptions o = with_arx_order(e, options);
+  const DiscreteSystem realization = realize_determined(realize, e, o);
   model.extra.json()["arx"] = {{"order", o.arx_order}, {"markov_count", o.markov_count}};
-  const DiscreteSystem realization = realize(e, o, {});
   model.discrete = realization;
   if (is_amb1dof(e) && realization.states() == 4) {
     add_amb1dof_structure(e, realization, model);
@@ -261,7 +291,8 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
   };
   try_start("closed-loop", [&] {
     Model start;
-    add_amb1dof_structure(e, realize_closed_loop(e, with_arx_defaults(e, o), {}), start);
+    IdentifyOptions co = with_arx_order(e, o);
+    add_amb1dof_structure(e, realize_determined(realize_closed_loop, e, co), start);
     return start.parameters;
   });
   try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });

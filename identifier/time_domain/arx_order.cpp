@@ -22,6 +22,9 @@ Eigen::Index default_arx_order(Eigen::Index samples, Eigen::Index outputs, Eigen
   return std::min(grown, most);
 }
 
-Eigen::Index default_markov_count(Eigen::Index arx_order) { return std::max(kMinMarkovCount, 2 * arx_order); }
+const std::vector<Eigen::Index>& default_markov_counts() {
+  static const std::vector<Eigen::Index> counts = {30, 60, 100};
+  return counts;
+}
 
 }  // namespace ambid::ident

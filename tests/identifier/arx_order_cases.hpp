@@ -61,7 +61,8 @@ inline ArxCaseResult identify_case(const ArxCase& c, const std::string& method, 
     for (const auto& [name, value] : c.truth) {
       const double e = std::abs(m.parameters.at(name) / value - 1.0);
       r.worst = std::max(r.worst, e);
-      if (name == "v5" || name == "v7" || name == "v8" || name == "v9") r.worst_physical = std::max(r.worst_physical, e);
+      if (name == "v5" || name == "v7" || name == "v8" || name == "v9")
+        r.worst_physical = std::max(r.worst_physical, e);
     }
   } catch (const Error& e) {
     r.error = e.what();

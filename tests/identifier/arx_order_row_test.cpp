@@ -1,8 +1,9 @@
 // One row of identifier/time_domain/ARX_ORDER.md held in the default suite (okid, LQR, 1 s at
 // 0.1 um / 1 mA, 2 V PRBS), and the short windows of the service: closed-loop on 0.25 s windows
 // gives a model (it used to fail with "d2c: discrete eigenvalue ... on the closed negative
-// real axis": 30 Markov parameters did not determine a 4th state above the noise), and at a
-// noise the window cannot carry, it says so (InsufficientData) instead of realising the noise.
+// real axis": 30 Markov parameters did not determine a 4th state above the noise; now more are
+// taken when they do not), and at a noise the window cannot carry it says so
+// (InsufficientData) instead of realising the noise.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -21,14 +22,14 @@ namespace {
 TEST(ArxOrderRow, OkidOneSecondWindowAgainstTheOrder) {
   const testing::ArxCase c = testing::arx_case("lqr", 1.0, 1e-7, 1e-3);
   // Worst v1..v9 error of the table (percent); the row's value within 15 % of itself.
-  const std::vector<std::pair<Eigen::Index, double>> row = {{8, 467}, {16, 175}, {32, 19.4}, {64, 20.8}, {0, 38.8}};
+  const std::vector<std::pair<Eigen::Index, double>> row = {{8, 467}, {16, 175}, {32, 19.4}, {64, 29.0}, {0, 120}};
   for (const auto& [order, percent] : row) {
     const testing::ArxCaseResult r = testing::identify_case(c, "okid", order);
     ASSERT_TRUE(r.error.empty()) << r.error;
     ::testing::Test::RecordProperty("okid_q" + std::to_string(r.order) + "_worst", testing::sci(r.worst));
     EXPECT_NEAR(100 * r.worst, percent, 0.15 * percent) << "order " << r.order;
     if (order == 0) {
-      EXPECT_EQ(r.order, 28);  // 3 ln 10000, rounded up
+      EXPECT_EQ(r.order, 19);  // 2 ln 10000, rounded up
     }
   }
 }
@@ -67,7 +68,7 @@ TEST(ArxOrderRow, WindowTooNoisyForFourStatesSaysSo) {
       } catch (const InsufficientData& e) {
         const std::string what = e.what();
         std::printf("%s window %lld: %s\n", controller.c_str(), static_cast<long long>(w), what.c_str());
-        EXPECT_TRUE(what.find("do not determine 4 states") != std::string::npos ||
+        EXPECT_TRUE(what.find("the data do not determine") != std::string::npos ||
                     what.find("numerical rank") != std::string::npos)
             << what;
         ++refused;

@@ -39,8 +39,7 @@ TEST(ArxOrderTable, WorstErrorAgainstWindowAndOrder) {
     std::printf("\n#### %s controller: worst v1..v9 %% (worst of R1, R2, kw1, kw2 %%)\n\n", controller.c_str());
     for (const std::string& method : kMethods) {
       std::printf("| %s | ", method.c_str());
-      for (const Eigen::Index q : kOrders)
-        std::printf(q ? "q = %lld | " : "default q | ", static_cast<long long>(q));
+      for (const Eigen::Index q : kOrders) std::printf(q ? "q = %lld | " : "default q | ", static_cast<long long>(q));
       std::printf("\n|---|");
       for (std::size_t i = 0; i < kOrders.size(); ++i) std::printf("---|");
       std::printf("\n");
@@ -48,11 +47,11 @@ TEST(ArxOrderTable, WorstErrorAgainstWindowAndOrder) {
       for (const double window : kWindows) {
         const testing::ArxCase c = testing::arx_case(controller, window, 1e-7, 1e-3);
         std::printf("| %g s | ", window);
-        std::string defaults;
         for (const Eigen::Index q : kOrders) {
           const testing::ArxCaseResult r = testing::identify_case(c, method, q);
-          if (!r.error.empty()) failures.push_back(controller + " " + method + " " + std::to_string(window) + " s q " +
-                                                   std::to_string(r.order) + ": " + r.error);
+          if (!r.error.empty())
+            failures.push_back(controller + " " + method + " " + std::to_string(window) + " s q " +
+                               std::to_string(r.order) + ": " + r.error);
           std::printf("%s%s | ", cell(r).c_str(), q ? "" : (" q " + std::to_string(r.order)).c_str());
           const std::string key = method + " / " + controller;
           if (r.error.empty() && r.worst <= 0.01 && !reached.count(key)) reached[key] = std::to_string(window) + " s";

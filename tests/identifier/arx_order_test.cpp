@@ -20,11 +20,11 @@ using testing::random_matrix;
 using C = std::complex<double>;
 
 TEST(ArxOrder, GrowsWithTheLogarithmOfTheRecordWithinTheVarianceCap) {
-  // 3 ln N, at most N / (20 (p + m)) with p = 3, m = 2 (the amb1dof_voltage regressors).
-  EXPECT_EQ(default_arx_order(2500, 3, 2), 24);   // 3 ln 2500 = 23.5 (cap 25)
-  EXPECT_EQ(default_arx_order(10000, 3, 2), 28);  // 27.6
-  EXPECT_EQ(default_arx_order(80000, 3, 2), 34);  // 33.9
-  EXPECT_EQ(default_arx_order(1000, 3, 2), 10);   // 20.7, capped at 1000 / 100
+  // 2 ln N, at most N / (20 (p + m)) with p = 3, m = 2 (the amb1dof_voltage regressors).
+  EXPECT_EQ(default_arx_order(2500, 3, 2), 16);   // 2 ln 2500 = 15.6 (cap 25)
+  EXPECT_EQ(default_arx_order(10000, 3, 2), 19);  // 18.4
+  EXPECT_EQ(default_arx_order(80000, 3, 2), 23);  // 22.6
+  EXPECT_EQ(default_arx_order(1000, 3, 2), 10);   // 13.8, capped at 1000 / 100
   EXPECT_EQ(default_arx_order(100, 3, 2), 1);     // the last record long enough
   EXPECT_THROW(default_arx_order(99, 3, 2), InsufficientData);
   EXPECT_THROW(default_arx_order(10000, 0, 2), Error);
@@ -34,8 +34,7 @@ TEST(ArxOrder, GrowsWithTheLogarithmOfTheRecordWithinTheVarianceCap) {
     EXPECT_GE(q, previous) << n;
     previous = q;
   }
-  EXPECT_EQ(default_markov_count(10), kMinMarkovCount);
-  EXPECT_EQ(default_markov_count(80), 160);
+  EXPECT_EQ(default_markov_counts(), (std::vector<Eigen::Index>{30, 60, 100}));
 }
 
 // Innovation model x[k+1] = A x + B u + G e, y = C x + e with the predictor A - G C of radius
