@@ -16,8 +16,9 @@ Eigen::Index default_arx_order(Eigen::Index samples, Eigen::Index outputs, Eigen
   const Eigen::Index most = samples / (kArxRowsPerParameter * per_lag);
   if (most < 1)
     throw InsufficientData(
-        "ARX order: " + std::to_string(samples) + " samples give fewer than " + std::to_string(kArxRowsPerParameter) +
-        " equations per coefficient of an order-1 ARX model (" + std::to_string(per_lag) + " coefficients per lag)");
+        "ARX order: an order-1 ARX model (" + std::to_string(per_lag) + " coefficients per lag) needs more than " +
+        std::to_string(kArxRowsPerParameter * per_lag - 1) + " samples (" + std::to_string(kArxRowsPerParameter) +
+        " equations per coefficient), got " + std::to_string(samples));
   const auto grown = static_cast<Eigen::Index>(std::ceil(kArxOrderPerLogSample * std::log(double(samples))));
   return std::min(grown, most);
 }
