@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +14,7 @@
 #include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/families/amb1dof_realization.hpp"
 #include "identifier/plant_families.hpp"
+#include "identifier/time_domain/arx_order.hpp"
 #include "identifier/time_domain/closed_loop_id.hpp"
 #include "identifier/time_domain/closed_loop_validation.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
@@ -36,6 +39,10 @@ LoopSignals signals_of(const Experiment& e) {
 KnownController controller_of(const Experiment& e, const LoopSignals& s) {
   return known_controller(*e.controller, s.u_names, s.y_names);  // refuses feedthrough from u
 }
+
+// The ARX -> Markov -> ERA methods refuse a model order whose last Hankel singular value is
+// not twice the next: such a state is the noise's, not the plant's (EraOptions::min_gap).
+constexpr double kEraMinGap = 2.0;
 
 Index model_order(const Experiment& e, const IdentifyOptions& o) {
   if (o.order < 0) throw Error(kWho + ": order must be >= 0, got " + std::to_string(o.order));
@@ -81,6 +88,7 @@ DiscreteSystem realize_okid(const Experiment& e, const IdentifyOptions& o, const
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
+  eo.min_gap = kEraMinGap;
   return era(markov_from_arx(arx, o.markov_count).system, e.sample_time, eo).system;
 }
 
@@ -93,6 +101,7 @@ Options arx_era_options(const Experiment& e, const IdentifyOptions& o, const Bre
   out.markov_count = o.markov_count;
   out.sample_time = e.sample_time;
   out.era.order = model_order(e, o);
+  out.era.min_gap = kEraMinGap;
   return out;
 }
 
@@ -141,8 +150,49 @@ void add_jackknife_uncertainty(const IdentificationFamily& family, Realize reali
   model.extra.json()["uncertainty_method"] = "segment jackknife, " + std::to_string(o.jackknife_segments) + " segments";
 }
 
-void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
-  const DiscreteSystem realization = realize(e, o, {});
+// `o` with the ARX order of the ARX -> Markov -> ERA methods resolved for the record `e`
+// (arx_order.hpp); the jackknife's shorter sub-records keep it.
+IdentifyOptions with_arx_order(const Experiment& e, IdentifyOptions o) {
+  if (o.arx_order == 0) {
+    const LoopSignals s = signals_of(e);
+    o.arx_order = default_arx_order(e.samples(), s.y.cols(), s.u.cols());
+  }
+  return o;
+}
+
+// A sampled continuous plant has no eigenvalue on the closed negative real axis (exp(s T) of a
+// real s is positive); one there is a state of the noise, not of the plant.
+std::optional<double> negative_real_eigenvalue(const DiscreteSystem& realization) {
+  for (const std::complex<double>& z : poles(realization))
+    if (z.real() <= 0.0 && std::abs(z.imag()) <= 1e-12 * std::max(1.0, std::abs(z))) return z.real();
+  return std::nullopt;
+}
+
+// realize() with the given Markov count, or without one with default_markov_counts() in turn
+// until ERA finds the model order determined and no state on the negative real axis;
+// `o.markov_count` becomes the count used. Throws InsufficientData when none does.
+DiscreteSystem realize_determined(Realize realize, const Experiment& e, IdentifyOptions& o) {
+  if (o.markov_count > 0) return realize(e, o, {});
+  std::string last;
+  for (const Index count : default_markov_counts()) {
+    o.markov_count = count;
+    try {
+      const DiscreteSystem realization = realize(e, o, {});
+      const std::optional<double> z = negative_real_eigenvalue(realization);
+      if (!z) return realization;
+      last = "a state at z = " + std::to_string(*z) + " on the negative real axis, of no sampled plant";
+    } catch (const UndeterminedOrder& error) {
+      last = error.what();
+    }
+  }
+  throw InsufficientData(kWho + ": the data do not determine a model of this order: with " +
+                         std::to_string(o.markov_count) + " Markov parameters (the most tried) " + last);
+}
+
+void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& options, Model& model) {
+  IdentifyOptions o = with_arx_order(e, options);
+  const DiscreteSystem realization = realize_determined(realize, e, o);
+  model.extra.json()["arx"] = {{"order", o.arx_order}, {"markov_count", o.markov_count}};
   model.discrete = realization;
   const IdentificationFamily* family = find_identification_family(e.plant.model);
   if (family && family->add_structure && realization.states() == family->order) {
@@ -221,7 +271,8 @@ Amb1dofPredictionErrorFit pem_fit(const Experiment& e, const IdentifyOptions& o,
   };
   try_start("closed-loop", [&] {
     Model start;
-    add_amb1dof_structure(e, realize_closed_loop(e, o, {}), start);
+    IdentifyOptions co = with_arx_order(e, o);
+    add_amb1dof_structure(e, realize_determined(realize_closed_loop, e, co), start);
     return start.parameters;
   });
   try_start("deadbeat-iv", [&] { return identify_amb1dof_deadbeat(e, instrumental_variables(o)).parameters; });
@@ -353,8 +404,6 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
                            " skipped, leave nothing to fit");
   const Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
   IdentifyOptions resolved = o;
-  if (resolved.arx_order == 0) resolved.arx_order = kDefaultArxOrder;
-  if (resolved.markov_count == 0) resolved.markov_count = kDefaultMarkovCount;
   if (resolved.instrument_lags == 0) resolved.instrument_lags = kDefaultInstrumentLags;
 
   Model model;

@@ -33,8 +33,10 @@ namespace ambid::ident {
 struct IdentifyOptions {
   std::string method;                   // one of identification_methods() (methods.hpp)
   Eigen::Index order = 0;               // model states; 0: 4 for amb1dof_voltage, else ERA's suggestion
-  Eigen::Index arx_order = 0;           // okid/closed-loop/projection; 0: kDefaultArxOrder
-  Eigen::Index markov_count = 0;        // Markov parameters for ERA; 0: kDefaultMarkovCount
+  Eigen::Index arx_order = 0;           // okid/closed-loop/projection; 0: grows with the fitted samples
+                                        // (default_arx_order, identifier/time_domain/arx_order.hpp)
+  Eigen::Index markov_count = 0;        // Markov parameters for ERA; 0: the first of default_markov_counts()
+                                        // that determines the model order
   Eigen::Index skip_samples = 0;        // leading samples dropped (settling transient)
   Eigen::Index instrument_lags = 0;     // deadbeat-iv: r[k..k-lags]; 0: kDefaultInstrumentLags
   double validation_fraction = 0.25;    // in [0, 0.9]; 0: no validation (fit.nrmse empty)
@@ -44,8 +46,6 @@ struct IdentifyOptions {
   std::optional<PemWarmStart> pem_warm_start;
 };
 
-inline constexpr Eigen::Index kDefaultArxOrder = 16;
-inline constexpr Eigen::Index kDefaultMarkovCount = 30;
 inline constexpr Eigen::Index kDefaultInstrumentLags = 60;
 
 // Throws Error naming the problem for an unknown method, an experiment the method cannot use

@@ -24,7 +24,8 @@ struct IdentificationMethod {
   bool family_bound = false;
   std::string description;  // one line
   // Fits `fit` (the part of the record to fit) into `model`. identify_experiment has checked
-  // the requirements above and resolved the default ARX order and Markov count in `options`.
+  // the requirements above and resolved the default instrument lags in `options` (the ARX
+  // methods resolve their ARX order and Markov count on `fit`: time_domain/arx_order.hpp).
   void (*fit)(const Experiment& fit, const IdentifyOptions& options, Model& model) = nullptr;
 };
 

@@ -140,6 +140,13 @@ EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions
                            " exceeds the numerical rank of the Hankel matrix (singular value " + std::to_string(n) +
                            " is " + num(sv(n - 1)) + ", largest " + num(sv(0)) + "); the data show at most " +
                            std::to_string(suggest_order(sv)) + " states");
+  if (options.min_gap > 1.0 && n < sv.size() && !(sv(n - 1) >= options.min_gap * sv(n)))
+    throw UndeterminedOrder("ERA: the data do not determine " + std::to_string(n) + " states: singular value " +
+                            std::to_string(n) + " (" + num(sv(n - 1) / sv(0)) + " of the largest) is not " +
+                            num(options.min_gap) + " times singular value " + std::to_string(n + 1) + " (" +
+                            num(sv(n) / sv(0)) +
+                            "), the floor the noise and the ARX truncation put under them; a longer record, more "
+                            "excitation or less noise is needed");
   out.order = n;
 
   const Eigen::MatrixXd Un = U.leftCols(n), Vn = V.leftCols(n);

@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include "core/error.hpp"
 #include "core/state_space.hpp"
 #include "identifier/time_domain/markov.hpp"
 
@@ -32,6 +33,17 @@ struct EraOptions {
   Eigen::Index block_columns = 0;       // s
   bool data_correlation = false;        // ERA/DC
   Eigen::Index correlation_blocks = 2;  // xi: ERA/DC uses (xi + 1) x (xi + 1) blocks of R
+  // > 1: refuse (UndeterminedOrder) an order n whose singular value n is not min_gap times
+  // singular value n + 1. Noise and truncation put a floor under the singular values; a state
+  // whose singular value does not stand above it is not determined by the data, and its
+  // eigenvalue lands anywhere (e.g. on the negative real axis, where no continuous model exists).
+  double min_gap = 0.0;
+};
+
+// The refusal of EraOptions::min_gap: the data do not determine the requested order.
+class UndeterminedOrder : public InsufficientData {
+ public:
+  using InsufficientData::InsufficientData;
 };
 
 struct EraResult {
@@ -47,7 +59,7 @@ struct EraResult {
 // p r ~ m s (Lee, Appendix B era.m). Throws Error for inconsistent sizes, too few Markov
 // parameters for the requested blocks, or an order above min(p r, m s) or above the numerical
 // rank of the Hankel matrix (a singular value at or below max(1e-13, size * epsilon) times the
-// largest: InsufficientData).
+// largest: InsufficientData), or without the gap options.min_gap above it (UndeterminedOrder).
 EraResult era(const MarkovSequence& markov, double sample_time, const EraOptions& options = {});
 
 // The order at the largest gap of descending singular values (>= 1): argmax of

@@ -30,6 +30,11 @@ std::map<std::string, double> identified(const std::map<std::string, double>& tr
   options.method = "closed-loop";
   options.validation_fraction = 0.0;
   options.jackknife_segments = 0;  // values only
+  // The operating point's physics at a fixed ARX order and Markov count: the default order
+  // grows with the record (19 on these 10000 samples) and fits more of the bearing's
+  // nonlinearity at 1 V, up to 1.9 % off the settled parameters noise free.
+  options.arx_order = 16;
+  options.markov_count = 30;
   return ident::identify_experiment(last, options).physical;
 }
 

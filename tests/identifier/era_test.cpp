@@ -95,6 +95,32 @@ TEST(Era, OrderOverrideAndBlockSizes) {
   EXPECT_THROW(era(y, 1e-3, o), Error);
 }
 
+// A state the noise hides: Markov parameters of the 6-state system plus white noise that
+// lifts the 7th singular value (0 without noise) to about the 6th. Order 6 is then refused with
+// the reason named; without noise, or without the check, it is realised.
+TEST(Era, StateBelowTheNoiseFloorIsRefused) {
+  std::mt19937_64 rng(44);
+  const TrueSystem t = true_system(rng);
+  auto y = markov_of(t.A, t.B, t.C, t.D, 30);
+  EraOptions o;
+  o.min_gap = 2.0;
+  o.order = 6;
+  const EraResult clean = era(y, 1e-3, o);
+  EXPECT_LT(eigenvalue_error(t.A, clean.system.A), 1e-8);
+  const double sv6 = clean.hankel_singular_values(5);
+  for (std::size_t k = 1; k < y.size(); ++k) y[k] += random_matrix(2, 3, rng, sv6 / std::sqrt(30.0));
+  const Eigen::VectorXd noisy = era(y, 1e-3).hankel_singular_values;
+  ASSERT_LT(noisy(5), 2.0 * noisy(6));  // the 6th state is not clear of the noise
+  try {
+    era(y, 1e-3, o);
+    FAIL() << "expected InsufficientData";
+  } catch (const InsufficientData& e) {
+    EXPECT_NE(std::string(e.what()).find("do not determine 6 states"), std::string::npos) << e.what();
+  }
+  o.min_gap = 0.0;
+  EXPECT_EQ(era(y, 1e-3, o).system.states(), 6);
+}
+
 TEST(Era, SuggestedOrderIsTheLargestGap) {
   Eigen::VectorXd s(6);
   s << 10.0, 5.0, 4.0, 1e-3, 5e-4, 1e-4;
