@@ -1,8 +1,8 @@
 // `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
 // Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
-// identified (identifier/identify_window.hpp, method closed-loop by default: Lee ch. 2, unbiased
-// on an off-nominal plant but reporting no sigma, so the baseline's learned window-to-window
-// scatter is the whole sigma_eff; deadbeat reports sigmas but is biased off nominal). The first
+// identified (identifier/identify_window.hpp, method pem by default: consistent at real sensor
+// noise and off nominal, with sigmas; the baseline's learned window-to-window scatter widens
+// them where they fall short; deadbeat is biased off nominal). The first
 // window of each experiment skips kSettlingSamples (a record starts at the nominal operating
 // point and settles to the plant's own); later windows carry the controller state. A model
 // file is one window. Fault isolation uses the closed-loop signatures of the first

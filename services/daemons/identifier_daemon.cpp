@@ -80,6 +80,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
   WindowFailures failures(config.failures, runtime.metrics);
   runtime.ready("windows of " + std::to_string(window_samples) + " samples, method " + config.identify.method);
+  WindowIdentifier identifier(config.identify);
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
@@ -102,7 +103,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
         const Experiment w = window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
-          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.identify);
+          bus::IdentifiedModel model = identifier.identify(w, options.plant_id, seq++);
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
           runtime.metrics.published.Increment();
