@@ -60,7 +60,8 @@ struct Input {
   std::string file;
   std::string kind;  // "experiment" | "model"
   std::vector<diag::EstimateWindow> windows;
-  std::optional<Experiment> loop;  // an experiment's sidecar (no samples): plant and controller
+  std::optional<Experiment> loop;    // an experiment's sidecar (no samples): plant and controller
+  Eigen::Index clamped_samples = 0;  // samples where a controller clamp acted (not exogenous)
 };
 
 bool is_model_file(const std::filesystem::path& path) {
@@ -94,10 +95,11 @@ Input model_input(const std::string& file, double start, const std::string& plan
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
                        const std::string& plant_id) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
-  const Experiment e = read_experiment(file).experiment;
+  const ReadResult read = read_experiment(file);
+  const Experiment& e = read.experiment;
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
-  Input in{file, "experiment", {}, e};
+  Input in{file, "experiment", {}, e, read.clamped_samples};
   in.loop->t.resize(0);
   in.loop->y.resize(0, 0);
   in.loop->u.resize(0, 0);
@@ -136,8 +138,11 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
   j["baseline_windows"] = baseline_windows;
   j["inputs"] = nlohmann::json::array();
   for (const Input& in : inputs)
-    j["inputs"].push_back(
-        {{"file", in.file}, {"kind", in.kind}, {"windows", in.windows.size()}, {"time_to", in.windows.back().time}});
+    j["inputs"].push_back({{"file", in.file},
+                           {"kind", in.kind},
+                           {"windows", in.windows.size()},
+                           {"time_to", in.windows.back().time},
+                           {"clamped_samples", in.clamped_samples}});
   for (const auto& [key, b] : d.baselines)
     j["baselines"][key.second] = {{"mean", b.mean},
                                   {"extra_spread", b.extra_spread},
@@ -157,7 +162,11 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
     << a.baseline << " (" << baseline_windows << " windows)\n\n";
   for (const Input& in : inputs)
     s << "  " << in.kind << " " << in.file << ": " << in.windows.size()
-      << " window(s), to t = " << number(in.windows.back().time) << " s\n";
+      << " window(s), to t = " << number(in.windows.back().time) << " s"
+      << (in.clamped_samples ? ", " + std::to_string(in.clamped_samples) +
+                                   " samples with a controller clamp acting (not exogenous; still in the window fits)"
+                             : std::string())
+      << "\n";
   s << "\n  parameter  level  baseline      extra spread  latest\n";
   for (const auto& [key, level] : d.final_levels) {
     const diag::Baseline& b = d.baselines.at(key);
