@@ -37,6 +37,7 @@
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
+#include "services/cli/progress.hpp"
 #include "services/report/atomic_file.hpp"
 #include "services/report/figure.hpp"
 #include "services/report/svg.hpp"
@@ -54,6 +55,7 @@ struct DiagnoseArguments {
   std::string method = ident::kDefaultWindowMethod;
   std::string plant_id = "plant";
   std::string out;
+  bool quiet = false;  // no progress line on stderr
 };
 
 struct Input {
@@ -93,7 +95,7 @@ Input model_input(const std::string& file, double start, const std::string& plan
 }
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
-                       const std::string& plant_id) {
+                       const std::string& plant_id, Progress& progress) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
   const ReadResult read = read_experiment(file);
   const Experiment& e = read.experiment;
@@ -107,6 +109,7 @@ Input experiment_input(const std::string& file, double start, double window, con
   try {
     const std::vector<Experiment> parts = diag::split_experiment(e, samples);
     for (std::size_t i = 0; i < parts.size(); ++i) {
+      progress.update("identify the windows of " + file, i, parts.size());
       try {
         const double end = start + double(i + 1) * double(samples) * e.sample_time;
         options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
@@ -224,12 +227,13 @@ void run(const DiagnoseArguments& a) {
                 std::to_string(a.inputs.size()) + " input(s) given, more than the baseline are needed");
   if (!(a.window >= 0.0) || !std::isfinite(a.window))
     throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(a.window));
+  Progress progress("ambid diagnose", a.quiet);
   std::vector<Input> inputs;
   double start = 0.0;
   for (const std::string& file : a.inputs) {
     if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
     inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
-                                         : experiment_input(file, start, a.window, a.method, a.plant_id));
+                                         : experiment_input(file, start, a.window, a.method, a.plant_id, progress));
     start = inputs.back().windows.back().time;
   }
   std::size_t baseline_windows = 0;
@@ -256,7 +260,9 @@ void run(const DiagnoseArguments& a) {
     }
     break;
   }
+  progress.update("learn the baseline and diagnose the windows", 0, 1);
   const diag::OfflineDiagnosis d = diag::diagnose_offline(windows, baseline_windows, dir / "trends.sqlite", config);
+  progress.clear();
   report::write_file_atomically(dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n");
   const std::string summary = summary_text(a, inputs, baseline_windows, d);
   report::write_file_atomically(dir / "summary.txt", summary);
@@ -284,6 +290,7 @@ void add_diagnose_command(CLI::App& app) {
   cmd->footer("--method:\n" + ident::method_table());
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr (there is none when stderr is no terminal)");
   cmd->callback([args] { run(*args); });
 }
 

@@ -6,6 +6,7 @@
 #include "core/experiment_import.hpp"
 #include "core/experiment_io.hpp"
 #include "services/cli/commands.hpp"
+#include "services/cli/progress.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -14,6 +15,7 @@ struct ImportArguments {
   std::string file, out, mapping_file, template_file, t;
   std::vector<std::string> y, u, r;
   ImportOptions options;
+  bool quiet = false;  // no progress line on stderr
 };
 
 ImportMapping mapping_of(const ImportArguments& a) {
@@ -49,19 +51,26 @@ void add_import_command(CLI::App& app) {
   cmd->add_option("--y", args->y, "an output: NAME=SOURCE[:UNIT][*SCALE], e.g. x=pos:mm or x='A(:,2)*0.001'");
   cmd->add_option("--u", args->u, "a plant input: NAME=SOURCE[:UNIT][*SCALE]");
   cmd->add_option("--r", args->r, "an excitation: NAME=SOURCE[:UNIT][*SCALE]");
-  cmd->add_option("--sample-time", o.sample_time, "s (default: the mapping's, the template's, else the median step of t)");
+  cmd->add_option("--sample-time", o.sample_time,
+                  "s (default: the mapping's, the template's, else the median step of t)");
   cmd->add_flag("--resample", o.resample,
                 "non-uniform time: linear interpolation between neighbouring rows onto the uniform grid");
-  cmd->add_option("--max-gap", o.max_gap, "--resample refuses a step of t longer than this (s; default 10 sample times)");
+  cmd->add_option("--max-gap", o.max_gap,
+                  "--resample refuses a step of t longer than this (s; default 10 sample times)");
   cmd->add_flag("--reconstruct-r", o.reconstruct_r,
                 "r not logged: r = u - output of the template's controller; clamped samples are not exogenous");
   cmd->add_option("--name", o.name, "experiment name (default: the template's, else the file's stem)");
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr (there is none when stderr is no terminal)");
   cmd->footer("Units: " + import_units() + ". A value is raw * SCALE * unit factor.");
   cmd->callback([args] {
+    Progress progress("ambid import", args->quiet);
     ImportOptions options = args->options;
     if (!args->template_file.empty()) options.template_sidecar = read_experiment_sidecar(args->template_file);
+    progress.update("read and convert " + args->file, 0, 2);
     const ImportResult result = import_experiment(args->file, mapping_of(*args), options);
+    progress.update("write " + args->out, 1, 2);
     write_experiment(result.experiment, args->out);
+    progress.clear();
     const Experiment& e = result.experiment;
     std::cout << "ambid import: " << args->file << " (" << result.file_kind << ", " << result.rows << " rows)\n";
     for (const auto& step : result.steps) std::cout << "  " << step << "\n";
