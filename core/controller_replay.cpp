@@ -40,9 +40,11 @@ ControllerReplay replay_controller(const Experiment& e) {
   ControllerReplay out;
   out.output = Eigen::MatrixXd::Zero(n, Eigen::Index(e.u_names.size()));
   out.clamped.assign(std::size_t(n), false);
+  out.states.resize(n, k.states());
   Eigen::VectorXd xc = k.initial_state.size() ? k.initial_state : Eigen::VectorXd::Zero(k.states());
   Eigen::VectorXd v(Eigen::Index(inputs.size())), next(k.states());
   for (Eigen::Index s = 0; s < n; ++s) {
+    out.states.row(s) = xc.transpose();
     for (std::size_t i = 0; i < inputs.size(); ++i) v(Eigen::Index(i)) = (*inputs[i].first)(s, inputs[i].second);
     const Eigen::VectorXd uf = k.C * xc + k.D * v;
     bool clamped = false;

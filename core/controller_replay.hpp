@@ -14,6 +14,7 @@ struct ControllerReplay {
   // uf = C xc + D v per sample, deviations, one column per u signal (in u_names order; 0 for a
   // u signal the controller does not drive).
   Eigen::MatrixXd output;
+  Eigen::MatrixXd states;     // xc[k] per sample (samples x controller states), as clamped
   std::vector<bool> clamped;  // per sample: an output or a state clamp acted
   Eigen::Index clamped_samples = 0;
 };

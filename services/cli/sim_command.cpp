@@ -33,7 +33,8 @@ void print_summary(const Experiment& e, const std::string& stem, const sim::Clos
   for (Eigen::Index j = 0; j < du.cols(); ++j)
     std::cout << "  " << e.u_names[std::size_t(j)] << ": rms deviation " << rms(du.col(j)) << " V\n";
   if (stats.saturated_samples > 0)
-    std::cout << "  amplifier limit reached in " << stats.saturated_samples << " samples\n";
+    std::cout << "  a clamp (amplifier or controller state limit) acted in " << stats.saturated_samples
+              << " samples: not exogenous\n";
   std::cout << "  wrote " << stem << ".csv and " << stem << ".json\n";
 }
 
