@@ -55,7 +55,8 @@ std::vector<SignalSource> in_order(const std::vector<SignalSource>& mapped, cons
                 join(names_of(mapped)) + "; map each of them once");
   std::vector<SignalSource> ordered;
   for (const auto& name : wanted)
-    ordered.push_back(*std::find_if(mapped.begin(), mapped.end(), [&](const SignalSource& s) { return s.name == name; }));
+    ordered.push_back(
+        *std::find_if(mapped.begin(), mapped.end(), [&](const SignalSource& s) { return s.name == name; }));
   return ordered;
 }
 
@@ -71,7 +72,8 @@ double median_step(const Eigen::VectorXd& t) {
   return std::round(median / unit) * unit;
 }
 
-// Checks t, makes it uniform (or refuses), and returns the samples on the final grid.
+// Checks that t increases, and when its steps are not uniform within 1 % of T, resamples t and
+// values onto the uniform grid (or refuses, naming the step).
 void uniform_time(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, const ImportOptions& options,
                   ImportResult& result) {
   for (Eigen::Index k = 1; k < t.size(); ++k)
@@ -80,8 +82,8 @@ void uniform_time(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, const I
                   " s after t = " + number_text(t(k - 1)) + " s on row " + std::to_string(k));
   const auto gap = find_sampling_gap(t, T);
   if (!gap) return;
-  const std::string where = "t steps by " + number_text(t(*gap) - t(*gap - 1)) + " s from t = " +
-                            number_text(t(*gap - 1)) + " s (row " + std::to_string(*gap) + ")";
+  const std::string where = "t steps by " + number_text(t(*gap) - t(*gap - 1)) +
+                            " s from t = " + number_text(t(*gap - 1)) + " s (row " + std::to_string(*gap) + ")";
   if (!options.resample)
     throw Error("sampling is not uniform: " + where + ", expected the sample time " + number_text(T) +
                 " s within 1 %; --resample interpolates onto a uniform grid");
@@ -93,8 +95,8 @@ void uniform_time(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, const I
   if (widest_step > max_gap)
     throw Error("a gap of " + number_text(widest_step) + " s at t = " + number_text(t(widest - 1)) + " s (rows " +
                 std::to_string(widest) + " to " + std::to_string(widest + 1) + ") is longer than the " +
-                number_text(max_gap) + " s resampling accepts (--max-gap; default " +
-                number_text(kDefaultMaxGapSteps) + " sample times); refusing to interpolate across it");
+                number_text(max_gap) + " s resampling accepts (--max-gap; default " + number_text(kDefaultMaxGapSteps) +
+                " sample times); refusing to interpolate across it");
   const Eigen::Index rows = t.size();
   const double widest_at = t(widest - 1);
   resample_linear(t, values, T);
@@ -114,7 +116,8 @@ void reconstruct_excitation(Experiment& e, ImportResult& result) {
   e.r.resize(0, 0);
   for (const auto& in : e.controller->inputs)
     if (std::find(r_names.begin(), r_names.end(), in) != r_names.end())
-      throw Error("--reconstruct-r: the controller reads the excitation '" + in + "' itself, so r cannot be computed from u");
+      throw Error("--reconstruct-r: the controller reads the excitation '" + in +
+                  "' itself, so r cannot be computed from u");
   const ControllerReplay replay = replay_controller(e);
   e.r_names = r_names;
   // u = uf + r in deviations (experiment-format.md).
@@ -134,6 +137,7 @@ ImportResult import_from(const RecordedColumns& columns, const ImportMapping& ma
   std::vector<SignalSource> y = mapping.y, u = mapping.u, r = mapping.r;
   if (options.reconstruct_r && !r.empty()) throw Error("--reconstruct-r computes r; the mapping must not map it");
   if (options.template_sidecar) {
+    if (!options.plant_model.empty()) throw Error("give a template sidecar or a plant model, not both");
     e = *options.template_sidecar;
     y = in_order(y, e.y_names, "y");
     u = in_order(u, e.u_names, "u");
@@ -170,13 +174,14 @@ ImportResult import_from(const RecordedColumns& columns, const ImportMapping& ma
   result.rows = table.rows();
   if (result.rows < 2) throw Error("has " + std::to_string(result.rows) + " samples; at least 2 are needed");
 
-  double T = options.sample_time > 0.0                 ? options.sample_time
-             : mapping.sample_time > 0.0               ? mapping.sample_time
-             : options.template_sidecar                ? e.sample_time
-                                                       : 0.0;
-  const char* T_source = options.sample_time > 0.0 ? "given" : mapping.sample_time > 0.0 ? "from the mapping"
-                         : options.template_sidecar                            ? "from the template"
-                                                                               : "the median step of t";
+  double T = options.sample_time > 0.0   ? options.sample_time
+             : mapping.sample_time > 0.0 ? mapping.sample_time
+             : options.template_sidecar  ? e.sample_time
+                                         : 0.0;
+  const char* T_source = options.sample_time > 0.0   ? "given"
+                         : mapping.sample_time > 0.0 ? "from the mapping"
+                         : options.template_sidecar  ? "from the template"
+                                                     : "the median step of t";
   Eigen::MatrixXd values;
   Eigen::VectorXd t;
   if (mapping.t) {

@@ -61,8 +61,8 @@ class ImportExperiment : public ::testing::Test {
  protected:
   void SetUp() override {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("ambid-import-test-" + std::string(info->name()) + "-" +
-                                        std::to_string(std::random_device{}()));
+    dir_ = fs::temp_directory_path() /
+           ("ambid-import-test-" + std::string(info->name()) + "-" + std::to_string(std::random_device{}()));
     fs::create_directories(dir_);
     write_experiment(original_, dir_ / "original");
     options_.template_sidecar = read_experiment_sidecar(dir_ / "original.json");
@@ -140,11 +140,10 @@ TEST_F(ImportExperiment, MatNamedVectorsInMicrometresAndMilliampsWithoutTimeEqua
                                   {"w2", e.r.col(1) * 4.0}});
   ImportOptions o = options_;
   o.sample_time = kT;
-  const ImportResult result = import_experiment(
-      file("vectors.mat"),
-      mapping(std::nullopt, {"x=pos_um:um", "i1=I1_mA:mA", "i2=I2_mA:mA"}, {"u1=U1:V", "u2=U2"},
-              {"r1=w1*0.25", "r2=w2*0.25"}),
-      o);
+  const ImportResult result = import_experiment(file("vectors.mat"),
+                                                mapping(std::nullopt, {"x=pos_um:um", "i1=I1_mA:mA", "i2=I2_mA:mA"},
+                                                        {"u1=U1:V", "u2=U2"}, {"r1=w1*0.25", "r2=w2*0.25"}),
+                                                o);
   expect_equal_to_original(result.experiment, 1e-15);
 }
 
@@ -169,7 +168,7 @@ TEST_F(ImportExperiment, MalformedRecordsAreRefusedNamingTheFileAndTheProblem) {
   const auto m = [](const std::string& x_source, std::optional<std::string> t = "t") {
     return mapping(t, {"x=" + x_source, "i1=i1", "i2=i2"}, {"u1=u1", "u2=u2"}, {"r1=r1", "r2=r2"});
   };
-  std::vector<std::pair<std::string, Eigen::MatrixXd>> vars{{"t", e.t},        {"x", e.y.col(0)},  {"i1", e.y.col(1)},
+  std::vector<std::pair<std::string, Eigen::MatrixXd>> vars{{"t", e.t},         {"x", e.y.col(0)},  {"i1", e.y.col(1)},
                                                             {"i2", e.y.col(2)}, {"u1", e.u.col(0)}, {"u2", e.u.col(1)},
                                                             {"r1", e.r.col(0)}, {"r2", e.r.col(1)}};
   auto with = [&](const std::string& name, const Eigen::MatrixXd& value) {
@@ -182,15 +181,16 @@ TEST_F(ImportExperiment, MalformedRecordsAreRefusedNamingTheFileAndTheProblem) {
   write_mat(file("bad.mat"), vars);
   EXPECT_THAT(refusal("bad.mat", m("pos"), options_),
               AllOf(HasSubstr(mat + ": "), HasSubstr("no variable 'pos'"), HasSubstr("'x'")));
-  EXPECT_THAT([] {
-    try {
-      parse_signal_mapping("x=x:furlong");
-    } catch (const Error& error) {
-      return std::string(error.what());
-    }
-    return std::string("(accepted)");
-  }(),
-              HasSubstr("mapping of 'x' 'x:furlong': unknown unit 'furlong' (known: m (1 m), mm (0.001 m)"));
+  EXPECT_THAT(
+      [] {
+        try {
+          parse_signal_mapping("x=x:furlong");
+        } catch (const Error& error) {
+          return std::string(error.what());
+        }
+        return std::string("(accepted)");
+      }(),
+      HasSubstr("mapping of 'x' 'x:furlong': unknown unit 'furlong' (known: m (1 m), mm (0.001 m)"));
 
   write_mat(file("bad.mat"), with("short", e.y.col(0).head(kN - 1)));
   EXPECT_THAT(refusal("bad.mat", m("short"), options_),
@@ -230,12 +230,37 @@ TEST_F(ImportExperiment, MalformedRecordsAreRefusedNamingTheFileAndTheProblem) {
   EXPECT_THAT(refusal("bad.csv", m("x"), options_),
               AllOf(HasSubstr(csv + ": line 3, column 'x': expected a finite number, got 'abc'")));
   write_text("bad.csv", "t,x,i1,i2,u1,u2,r1,r2\n0,0,0.5,0.5,8,8,0,0\n1e-4,nan,0.5,0.5,8,8,0,0\n");
-  EXPECT_THAT(refusal("bad.csv", m("x"), options_), HasSubstr(csv + ": line 3, column 'x': expected a finite number, got 'nan'"));
+  EXPECT_THAT(refusal("bad.csv", m("x"), options_),
+              HasSubstr(csv + ": line 3, column 'x': expected a finite number, got 'nan'"));
   write_text("bad.csv", "t,x,i1,i2,u1,u2,r1,r2\n0,0,0.5,0.5,8,8,0,0\n1e-4,0,0.5,0.5,8,8,0\n");
   EXPECT_THAT(refusal("bad.csv", m("x"), options_), HasSubstr(csv + ": line 3 has 7 cells, the header has 8"));
   EXPECT_THAT(refusal("missing.csv", m("x"), options_), HasSubstr(file("missing.csv").string() + ": no such file"));
   EXPECT_THAT(refusal("bad.mat", mapping("t", {"x=x"}, {"u1=u1", "u2=u2"}, {"r1=r1", "r2=r2"}), options_),
               HasSubstr("the template's signals.y are x, i1, i2 but the mapping gives x"));
+}
+
+TEST_F(ImportExperiment, MappingFilesAreReadAndTheirErrorsNameTheFileAndKey) {
+  write_text("mapping.json", R"json({"t": "time:ms", "y": ["x=pos:mm", "i1=A(:,2)*2"], "u": ["u1=U"],
+                                     "sample_time": 1e-4})json");
+  const ImportMapping m = read_import_mapping(file("mapping.json"));
+  ASSERT_TRUE(m.t);
+  EXPECT_EQ(m.t->source, "time");
+  EXPECT_EQ(m.t->unit, "ms");
+  ASSERT_EQ(m.y.size(), 2u);
+  EXPECT_EQ(m.y[0].name, "x");
+  EXPECT_EQ(m.y[0].unit, "mm");
+  EXPECT_EQ(m.y[1].source, "A(:,2)");
+  EXPECT_EQ(m.y[1].scale, 2.0);
+  EXPECT_EQ(m.sample_time, 1e-4);
+  write_text("mapping.json", R"({"t": "time", "outputs": ["x=pos"]})");
+  try {
+    read_import_mapping(file("mapping.json"));
+    ADD_FAILURE() << "accepted an unknown key";
+  } catch (const Error& error) {
+    EXPECT_THAT(error.what(), HasSubstr(file("mapping.json").string() + ": unknown key `outputs`"));
+  }
+  write_text("mapping.json", R"({"t": "time:mm"})");
+  EXPECT_THROW(read_import_mapping(file("mapping.json")), Error);  // a length is no time unit
 }
 
 TEST_F(ImportExperiment, ResamplesANonUniformSineOntoTheMedianStepWithinTheLinearInterpolationBound) {
@@ -278,9 +303,8 @@ Eigen::MatrixXd read_mat_matrix(const fs::path& path, const std::string& name) {
   if (!mat) throw std::runtime_error("cannot open " + path.string());
   matvar_t* var = Mat_VarRead(mat, name.c_str());
   if (!var || var->class_type != MAT_C_DOUBLE) throw std::runtime_error("no double variable " + name);
-  const Eigen::MatrixXd m =
-      Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(var->data), Eigen::Index(var->dims[0]),
-                                        Eigen::Index(var->dims[1]));
+  const Eigen::MatrixXd m = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(var->data),
+                                                              Eigen::Index(var->dims[0]), Eigen::Index(var->dims[1]));
   Mat_VarFree(var);
   Mat_Close(mat);
   return m;
