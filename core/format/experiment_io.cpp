@@ -9,6 +9,7 @@
 #include "core/experiment_file.hpp"
 #include "core/format/experiment_csv.hpp"
 #include "core/format/experiment_sidecar.hpp"
+#include "core/json_text.hpp"
 
 namespace ambid {
 namespace {
@@ -45,7 +46,7 @@ void in_file(const std::filesystem::path& file, std::vector<std::string>& warnin
 ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions& options) {
   const ExperimentFiles files = files_of(path);
   ReadResult result;
-  const std::string sidecar_text = read_text_file(files.json);
+  const std::string sidecar_text = read_json_file(files.json);
   in_file(files.json, result.warnings, [&](std::vector<std::string>& warnings) {
     result.experiment = parse_sidecar(parse_sidecar_text(sidecar_text), warnings);
   });

@@ -9,6 +9,7 @@
 #include "core/experiment_io.hpp"
 #include "core/format/experiment_text.hpp"
 #include "core/format/json_fields.hpp"
+#include "core/json_text.hpp"
 
 // Required keys, chosen from the contract: `format`, `name`, `sample_time`, `plant.model`,
 // `plant.parameters`, `signals.y`, `signals.u` and `operating_point`, which must give a value
@@ -116,6 +117,7 @@ json parse_sidecar_text(const std::string& text) {
     }
     return true;
   };
+  check_json_bounds(text);  // before the parser: its cost grows with the square of the depth
   try {
     return json::parse(text, check_keys);
   } catch (const json::exception& e) {  // syntax, or a number beyond the range of double

@@ -7,11 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/experiment_file.hpp"
 #include "core/experiment_io.hpp"
 #include "diagnostics/audit.hpp"
 #include "services/cli/audit_report.hpp"
 #include "services/cli/commands.hpp"
-#include "services/report/atomic_file.hpp"
+#include "services/report/output_lock.hpp"
 
 namespace ambid::cli {
 namespace {
@@ -43,16 +44,17 @@ void add_audit_command(CLI::App& app) {
                    "how many of the screened candidates are fitted")
       ->capture_default_str();
   audit->callback([args] {
+    const report::OutputLock lock(args->out);
     const ReadResult read = read_experiment(args->experiment);
     for (const auto& w : read.warnings) std::cerr << "ambid audit: warning: " << w << "\n";
     const diag::AuditResult result = diag::run_audit(read.experiment, args->options);
     const std::filesystem::path dir(args->out);
     const std::string experiment_file = std::filesystem::path(args->experiment).filename().string();
-    report::write_file_atomically(dir / "audit.json",
-                                  diag::audit_json(result, experiment_file, "model-extended.json").dump(2) + "\n");
-    report::write_file_atomically(dir / "model-extended.json",
-                                  diag::extended_model_json(read.experiment, result).dump(2) + "\n");
-    report::write_file_atomically(dir / "report.html", audit_report_html(result, experiment_file));
+    // All three rendered before any is written: a failure leaves the previous outputs, no new one.
+    write_files_atomically(
+        {{dir / "audit.json", diag::audit_json(result, experiment_file, "model-extended.json").dump(2) + "\n"},
+         {dir / "model-extended.json", diag::extended_model_json(read.experiment, result).dump(2) + "\n"},
+         {dir / "report.html", audit_report_html(result, experiment_file)}});
     std::cout << "ambid audit: " << audit_verdict(result) << "\n";
     std::cout.precision(4);
     for (const auto& f : result.findings)

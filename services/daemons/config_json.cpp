@@ -1,23 +1,21 @@
 #include "services/daemons/config_json.hpp"
 
 #include <cstdint>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/json_text.hpp"
 
 namespace ambid::daemons {
 
 nlohmann::json load_config(const std::string& path) {
   if (path.empty()) return nlohmann::json::object();
-  std::ifstream in(path);
-  if (!in) throw Error("config " + path + ": cannot open");
   nlohmann::json config;
   try {
-    config = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error("config " + path + ": not JSON: " + e.what());
+    config = parse_json_text(read_json_file(path));
+  } catch (const Error& e) {
+    throw Error("config " + path + ": " + e.what());
   }
   if (!config.is_object())
     throw Error("config " + path + ": expected a JSON object, got " + std::string(config.type_name()));

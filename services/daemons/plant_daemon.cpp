@@ -80,12 +80,16 @@ class PlantDaemon {
     runtime_.ready(std::string(convert::source_kind_name(source_->kind())) + " " + source_->target());
     while (runtime_.running()) {
       handle_commands();
+      if (!source_) {  // failed with no fallback: commands only
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        continue;
+      }
       if (auto c = source_->condition_change()) {
         announce(last_source_command_, true, c->message);
         runtime_.set_health(c->ok ? bus::AlertLevel::ok : bus::AlertLevel::warn, c->message);
       }
       publish_batch();
-      if (source_->live()) continue;  // a live source waits for its samples in next_rows
+      if (!source_ || source_->live()) continue;  // a live source waits for its samples in next_rows
       // Pace: the simulated time published since the source started, at `speed` times real time.
       const auto due = pace_start_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                          std::chrono::duration<double>((clock_ - pace_clock_) / config_.speed));
@@ -102,7 +106,13 @@ class PlantDaemon {
 
   void publish_batch() {
     if (row_ >= record_.samples()) {
-      std::optional<SourceRows> rows = source_->next_rows(std::chrono::milliseconds(20));
+      std::optional<SourceRows> rows;
+      try {
+        rows = source_->next_rows(std::chrono::milliseconds(20));
+      } catch (const Error& e) {
+        source_failed(e.what());
+        return;
+      }
       if (!rows) return;
       record_ = std::move(rows->rows);
       row_ = 0;
@@ -124,7 +134,9 @@ class PlantDaemon {
       last_source_command_ = c.seq;
       runtime_.metrics.received.Increment();
       try {
-        source_ = make_plant_source(c.kind, c.target, context());
+        std::unique_ptr<PlantSource> next = make_plant_source(c.kind, c.target, context());
+        if (source_) previous_ = std::move(source_);
+        source_ = std::move(next);
         row_ = record_.samples();  // the next batch starts a record of the new source
         pace_start_ = std::chrono::steady_clock::now();
         pace_clock_ = clock_;
@@ -140,7 +152,7 @@ class PlantDaemon {
     for (const bus::ExcitationCommand& c : excitation_commands_->take()) {
       if (c.plant_id != options_.plant_id) continue;
       runtime_.metrics.received.Increment();
-      std::string refusal = excitation_violation(c, config_);
+      std::string refusal = source_ ? excitation_violation(c, config_) : "no source is running";
       if (refusal.empty()) {
         try {
           const auto [lo, hi] = std::minmax_element(c.frequencies.begin(), c.frequencies.end());
@@ -158,6 +170,22 @@ class PlantDaemon {
         runtime_.set_health(bus::AlertLevel::warn, "excitation refused: " + refusal);
       }
     }
+  }
+
+  // A source that fails after it was accepted (a later simulated record diverges, a replay
+  // file vanished) stops; the daemon falls back to the source before it, or waits for the
+  // next command. Health ERROR tells the operator either way.
+  void source_failed(const std::string& reason) {
+    const std::string message =
+        "failed: " + reason +
+        (previous_ ? "; back to the previous source" : "; no samples until the next source command");
+    announce(last_source_command_, false, message);
+    runtime_.set_health(bus::AlertLevel::error, "source " + source_->target() + " " + message);
+    source_ = std::move(previous_);
+    row_ = record_.samples();
+    pace_start_ = std::chrono::steady_clock::now();
+    pace_clock_ = clock_;
+    if (source_) announce(last_source_command_, true, "resumed after the failure of the source that replaced it");
   }
 
   void announce(std::uint64_t command_seq, bool accepted, const std::string& message) {
@@ -182,7 +210,8 @@ class PlantDaemon {
   std::unique_ptr<bus::Writer<bus::PlantSourceState>> state_;
   std::unique_ptr<bus::Reader<bus::PlantSourceCommand>> source_commands_;
   std::unique_ptr<bus::Reader<bus::ExcitationCommand>> excitation_commands_;
-  std::unique_ptr<PlantSource> source_;
+  std::unique_ptr<PlantSource> source_;    // null after a failure with nothing to fall back to
+  std::unique_ptr<PlantSource> previous_;  // the source before the last swap (the fallback)
   Experiment record_;
   Eigen::Index row_ = 0;
   std::uint64_t seq_ = 0;

@@ -1,5 +1,7 @@
 #include "services/daemons/plant_source.hpp"
 
+#include <utility>
+
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "services/daemons/rig_source.hpp"
@@ -10,13 +12,14 @@ namespace {
 
 class SimSource : public PlantSource {
  public:
+  // The first record is simulated here, so a scenario whose loop diverges (the rotor touches
+  // down) is refused before the swap instead of failing after it was announced.
   explicit SimSource(const std::string& file)
-      : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)) {}
+      : PlantSource(bus::SourceKind::sim, file), options_(read_scenario_file(file)), first_(simulate()) {}
 
   std::optional<SourceRows> next_rows(std::chrono::milliseconds) override {
-    sim::ScenarioOptions o = options_;
-    o.seed = options_.seed + records_++;
-    return SourceRows{sim::simulate_scenario(o), true};
+    if (first_) return SourceRows{*std::exchange(first_, std::nullopt), true};
+    return SourceRows{simulate(), true};
   }
 
   void excite(const ExcitationRequest& r) override {
@@ -32,8 +35,15 @@ class SimSource : public PlantSource {
   }
 
  private:
+  Experiment simulate() {
+    sim::ScenarioOptions o = options_;
+    o.seed = options_.seed + records_++;
+    return sim::simulate_scenario(o);
+  }
+
   sim::ScenarioOptions options_;
   std::uint64_t records_ = 0;
+  std::optional<Experiment> first_;
 };
 
 class ReplaySource : public PlantSource {

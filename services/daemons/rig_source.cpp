@@ -14,7 +14,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr auto kHelloTimeout = 2s;
+constexpr auto kHelloTimeout = 3s;  // > the emulator's 2 s lease: a lapsed session is taken over
 constexpr auto kKeepAlivePeriod = 500ms;
 // A frame this far behind the expected sequence number is a restarted rig, not a late frame.
 constexpr std::uint32_t kRestartDistance = 1024;

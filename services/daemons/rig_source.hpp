@@ -1,7 +1,7 @@
 #pragma once
 // The plant source `rig HOST:PORT`: the gateway to a controller board over the UDP rig
 // protocol (services/rig/RIG_PROTOCOL.md). It subscribes with HELLO (refused when the rig does
-// not answer within 2 s), keeps the subscription with KEEPALIVEs, turns sample batches into
+// not answer within 3 s), keeps the subscription with KEEPALIVEs, turns sample batches into
 // SourceRows (a new record on a sequence gap, a record change or a sample index jump), forwards
 // excitation commands and waits for their ACK/NACK, and reports the rig silent after
 // `silence` seconds without a frame. Malformed datagrams are counted

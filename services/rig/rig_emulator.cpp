@@ -63,7 +63,15 @@ class Emulator {
            " s runs the fault scenario " + o_.fault->name);
       fault_logged_ = true;
     }
-    record_data_ = sim::simulate_scenario(current());
+    try {
+      record_data_ = sim::simulate_scenario(current());
+    } catch (const Error& e) {  // e.g. an accepted excitation that makes the rotor touch down
+      if (!excitation_) throw;
+      log_("record " + std::to_string(record_) + " failed with the excitation " + excitation_->kind + " " +
+           std::to_string(excitation_->amplitude) + " V (" + e.what() + "): the board runs on without it");
+      excitation_.reset();
+      record_data_ = sim::simulate_scenario(current());
+    }
     row_ = 0;
   }
 
@@ -136,7 +144,13 @@ class Emulator {
     }
     const Payload& p = decoded.frame->payload;
     if (const auto* hello = std::get_if<Hello>(&p)) {
-      if (!gateway_ || !(*gateway_ == d.from)) {
+      if (gateway_ && !(*gateway_ == d.from)) {  // the session is the lease holder's until it lapses
+        if (++refused_hellos_ <= 20 || refused_hellos_ % 1000 == 0)
+          log_("HELLO from " + d.from.text() + " refused: " + gateway_->text() + " holds the session (" +
+               std::to_string(refused_hellos_) + " refused so far)");
+        return;
+      }
+      if (!gateway_) {
         log_("HELLO from " + d.from.text() + " (" + hello->gateway + "): streaming to it");
         last_reply_.reset();  // a new gateway numbers its commands from 1 again: no resend to answer
       }
@@ -158,8 +172,8 @@ class Emulator {
     if (last_reply_ && last_reply_->command == x.command) return *last_reply_;  // a resend
     ExciteReply r{x.command, false, {}};
     if (!(x.amplitude <= o_.max_amplitude)) {
-      r.reason = "amplitude " + std::to_string(x.amplitude) + " V above the board's amplifier limit " +
-                 std::to_string(o_.max_amplitude) + " V";
+      r.reason = fit_text("amplitude " + std::to_string(x.amplitude) + " V above the board's amplifier limit " +
+                          std::to_string(o_.max_amplitude) + " V");
     } else {
       const std::optional<Excite> before = excitation_;
       excitation_ = x;
@@ -168,7 +182,7 @@ class Emulator {
         r.accepted = true;
       } catch (const Error& e) {
         excitation_ = before;
-        r.reason = e.what();
+        r.reason = fit_text(e.what());
       }
     }
     log_("excitation command " + std::to_string(x.command) + " " + x.kind + " amplitude " +
@@ -186,7 +200,7 @@ class Emulator {
   std::optional<Excite> excitation_;
   std::optional<ExciteReply> last_reply_;
   std::uint32_t seq_ = 0, record_ = 0;
-  std::uint64_t record_count_ = 0;
+  std::uint64_t record_count_ = 0, refused_hellos_ = 0;
   double record_start_ = 0.0;  // board time of the current record's first sample
   bool fault_logged_ = false;
   Experiment record_data_;

@@ -2,8 +2,9 @@
 // A controller board in software, for tests and demos: the closed loop of plant_sim (the
 // controller "on the board") runs record after record at `speed` times real time and speaks
 // the rig protocol (RIG_PROTOCOL.md) on a UDP port: it answers HELLO with its status, streams
-// sample batches to the gateway that said HELLO for as long as it keeps the lease, applies
-// excitation commands it can run (ACK) and refuses the others with the reason (NACK). The
+// sample batches to the gateway that said HELLO for as long as it keeps the lease (a HELLO from
+// any other sender is refused until then), applies excitation commands it can run (ACK) and
+// refuses the others with the reason (NACK, cut to the frame's text field). The
 // board's clock starts at the first HELLO and runs on (samples nobody subscribes to are lost).
 #include <functional>
 #include <optional>

@@ -277,6 +277,15 @@ std::string_view fault_name(Fault fault) {
   return "value";
 }
 
+std::string fit_text(std::string_view text, std::size_t max_bytes) {
+  if (text.size() <= max_bytes) return std::string(text);
+  constexpr std::string_view kCut = "...";
+  if (max_bytes < kCut.size()) return std::string(max_bytes, '.');
+  std::size_t keep = max_bytes - kCut.size();
+  while (keep > 0 && (static_cast<unsigned char>(text[keep]) & 0xC0) == 0x80) --keep;  // inside a character
+  return std::string(text.substr(0, keep)) + std::string(kCut);
+}
+
 std::uint32_t crc32(std::span<const std::uint8_t> bytes) {
   static const std::array<std::uint32_t, 256> table = [] {
     std::array<std::uint32_t, 256> t{};

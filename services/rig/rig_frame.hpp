@@ -115,6 +115,10 @@ std::vector<std::uint8_t> encode(const Frame& frame);
 // Never throws: a malformed datagram comes back with its fault and a reason.
 Decoded decode(std::span<const std::uint8_t> datagram);
 
+// `text` cut to at most `max_bytes` at a UTF-8 character boundary, ending in "..." when cut:
+// free texts (a NACK reason quoting a huge number, a status message) always fit their field.
+std::string fit_text(std::string_view text, std::size_t max_bytes = kMaxText);
+
 // CRC-32 (IEEE 802.3, reflected, as zlib's crc32): "123456789" -> 0xCBF43926.
 std::uint32_t crc32(std::span<const std::uint8_t> bytes);
 

@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
+#include "core/json_text.hpp"
 
 namespace ambid {
 namespace {
@@ -568,6 +569,45 @@ TEST_F(ReadExperiment, UnknownKeysAreKeptAndWrittenBack) {
   EXPECT_EQ(read_experiment(dir_ / "copy").experiment.extra.json(), expected);
   std::ifstream copy(dir_ / "copy.json");
   EXPECT_EQ(json::parse(copy), sidecar);
+}
+
+// ---------------------------------------------------------------- bounded JSON (issue 18)
+
+TEST_F(ReadExperiment, RefusesDeepNestingBeforeTheParserSeesIt) {
+  std::string sidecar = good_sidecar().dump();
+  sidecar.pop_back();  // the closing brace
+  sidecar += ", \"deep\": " + std::string(30000, '[') + std::string(30000, ']') + "}";
+  write("run.json", sidecar);
+  write("run.csv", good_csv());
+  EXPECT_THAT(refusal(), HasSubstr(json_file() + "JSON nested deeper than 64 levels (at byte"));
+}
+
+TEST_F(ReadExperiment, AcceptsNestingToTheLimitAndBracketsInsideStrings) {
+  json sidecar = good_sidecar();
+  sidecar["name"] = std::string(300, '[') + "\\\"{";
+  json deep = 1.0;
+  for (int level = 0; level < 63; ++level) deep = json::array({deep});  // the root object is level 1
+  sidecar["deep"] = deep;
+  write_pair(sidecar, good_csv());
+  EXPECT_EQ(read().experiment.name, std::string(300, '[') + "\\\"{");
+  sidecar["deep"] = json::array({deep});
+  write_pair(sidecar, good_csv());
+  EXPECT_THAT(refusal(), HasSubstr("JSON nested deeper than 64 levels"));
+}
+
+TEST_F(ReadExperiment, RefusesAnOversizeSidecarWithoutReadingIt) {
+  std::string sidecar = good_sidecar().dump();
+  sidecar += std::string(kMaxJsonBytes, ' ');
+  write("run.json", sidecar);
+  write("run.csv", good_csv());
+  EXPECT_THAT(refusal(), HasSubstr((dir_ / "run.json").string() + ": " + std::to_string(sidecar.size()) +
+                                   " bytes, more than the 16777216 bytes a JSON file may have"));
+}
+
+TEST_F(ReadExperiment, RefusesADirectoryNamingIt) {
+  fs::create_directories(dir_ / "run.json");
+  write("run.csv", good_csv());
+  EXPECT_THAT(refusal(), HasSubstr("cannot read " + (dir_ / "run.json").string() + ": Is a directory"));
 }
 
 }  // namespace

@@ -263,7 +263,7 @@ TEST(RigSource, NoBoardNoSource) {
     make_rig_source(quiet.local().text(), c);
     ADD_FAILURE() << "a board that does not answer must be refused";
   } catch (const Error& e) {
-    EXPECT_THAT(e.what(), HasSubstr("did not answer HELLO within 2 s"));
+    EXPECT_THAT(e.what(), HasSubstr("did not answer HELLO within 3 s"));
   }
 }
 

@@ -3,13 +3,19 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "core/experiment_io.hpp"
 
 namespace ambid {
 namespace {
@@ -117,8 +123,8 @@ TEST(DiagnoseCli, StrongAmplifierTwoIsAnErrorAndNothingElse) {
 
 // Model files (ambid-model/1): five nominal ones (0.3 % scatter) form the baseline; then R1
 // +20 % is an ERROR of coil 1 resistance.
-TEST(DiagnoseCli, AcceptsModelFiles) {
-  const fs::path dir = fresh_dir("diagnose_models");
+// Seven model files of a bearing whose R1 reads +20 % from the sixth on (5 baseline windows).
+std::vector<std::string> write_model_files(const fs::path& dir) {
   const std::vector<double> wobble = {1.0, 1.003, 0.997, 1.002, 0.998, 1.001, 0.999};
   std::vector<std::string> files;
   for (std::size_t i = 0; i < wobble.size(); ++i) {
@@ -141,9 +147,26 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
     files.push_back((dir / ("model" + std::to_string(i) + ".json")).string());
     write_json(files.back(), m);
   }
+  return files;
+}
+
+TEST(DiagnoseCli, AcceptsModelFiles) {
+  const fs::path dir = fresh_dir("diagnose_models");
+  std::vector<std::string> files = write_model_files(dir);
+  // A discrete-only model (no continuous-time equivalent, `ambid identify` on such data) among
+  // them: a window without physical parameters, skipped with its reason.
+  nlohmann::json discrete_only = read_json(files[6]);
+  for (const char* key : {"physical", "uncertainty"}) discrete_only.erase(key);
+  discrete_only["no_continuous"] = "d2c: discrete eigenvalue -0.6 lies on the closed negative real axis";
+  files.push_back((dir / "discrete_only.json").string());
+  write_json(files.back(), discrete_only);
   const auto r = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("discrete_only.json: window 1 of 1 (to t = 8 s) skipped, not identified "
+                                  "(no_continuous_model): the model has no continuous part"));
   const nlohmann::json d = read_json(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["no_continuous_model"], 1);
+  EXPECT_EQ(d["inputs"][7]["skipped"][0]["reason"], "no_continuous_model");
   ASSERT_FALSE(d["alerts"].empty()) << r.output;
   const auto& a = d["alerts"][0];
   EXPECT_EQ(a["level"], "ERROR") << a.dump();
@@ -154,6 +177,7 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   for (const auto& other : d["alerts"]) EXPECT_EQ(other["parameter"], "R1") << other.dump();
 
   // A model without the uncertainty of a monitored parameter, or of another plant: refused.
+  files.pop_back();
   nlohmann::json m = read_json(files[6]);
   m["uncertainty"].erase("kw2");
   write_json(files[6], m);
@@ -165,6 +189,88 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   EXPECT_NE(bad.status, 0);
   EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
+}
+
+std::string file_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Issue 18: a run that fails leaves the previous outputs and trend store as they were (the
+// store used to be deleted first), and a second run into a folder being written is refused.
+TEST(DiagnoseCli, AFailedOrConcurrentRunLeavesThePreviousOutputs) {
+  const fs::path dir = fresh_dir("diagnose_atomic");
+  const std::string run = "diagnose" + joined(write_model_files(dir)) + " --baseline 5 --out " + (dir / "out").string();
+  ASSERT_EQ(run_ambid(run).status, 0);
+  const std::string store = file_text(dir / "out" / "trends.sqlite"), summary = file_text(dir / "out" / "summary.txt");
+  ASSERT_GT(store.size(), 0u);
+
+  // Another run holds the folder: refused, nothing touched.
+  {
+    const int fd = ::open((dir / "out" / ".ambid-lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(::flock(fd, LOCK_EX | LOCK_NB), 0);
+    const auto r = run_ambid(run);
+    ::close(fd);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("out is being written by another ambid run"));
+  }
+  // The outputs cannot be replaced (diagnosis.json is a directory now): the run fails after
+  // the diagnosis, the previous store and summary stay, no new store is left behind.
+  fs::remove(dir / "out" / "diagnosis.json");
+  fs::create_directories(dir / "out" / "diagnosis.json" / "blocker");
+  const auto failed = run_ambid(run);
+  EXPECT_EQ(failed.status, 1) << failed.output;
+  EXPECT_EQ(file_text(dir / "out" / "trends.sqlite"), store);
+  EXPECT_EQ(file_text(dir / "out" / "summary.txt"), summary);
+  EXPECT_FALSE(fs::exists(dir / "out" / ".trends.sqlite.new"));
+  fs::remove_all(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(run_ambid(run).status, 0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "out" / "diagnosis.json"));
+}
+
+// A record in the middle of the run whose recorded excitation is zero (switched off for 0.5 s):
+// neither of its windows can be identified. The run completes, diagnosis.json counts both with
+// their reason, stderr names them, and the other windows are diagnosed: R1 +20 % is still the
+// ERROR of coil 1.
+TEST(DiagnoseCli, WindowsThatCannotBeIdentifiedAreSkippedAndCounted) {
+  const fs::path dir = fresh_dir("diagnose_skipped");
+  std::vector<std::string> files = make_experiments(dir);
+  const std::string quiet = (dir / "quiet").string();
+  const auto q = run_ambid("sim" + kNoise + " --excitation none --seed 9 --set R1=21 --out " + quiet);
+  ASSERT_EQ(q.status, 0) << q.output;
+  Experiment e = read_experiment(quiet + ".json").experiment;  // without excitation: no r recorded
+  e.r_names = {"r1", "r2"};
+  e.r = Eigen::MatrixXd::Zero(e.samples(), 2);
+  write_experiment(e, quiet);
+  files.insert(files.begin() + 4, quiet + ".json");  // between the first and second hot record
+  const auto r = run_ambid("diagnose" + joined(files) + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("quiet.json: window 1 of 2 (to t = 2.25 s) skipped, not identified (insufficient_data)"));
+  EXPECT_THAT(r.output, HasSubstr("quiet.json: window 2 of 2 (to t = 2.5 s) skipped"));
+  const nlohmann::json d = read_json(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(d["skipped_windows"]["count"], 2);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["insufficient_data"], 2);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["no_continuous_model"], 0);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["error"], 0);
+  const nlohmann::json& in = d["inputs"][4];
+  EXPECT_EQ(in["file"], quiet + ".json");
+  EXPECT_EQ(in["windows"], 0);
+  ASSERT_EQ(in["skipped"].size(), 2u);
+  EXPECT_EQ(in["skipped"][0]["window"], 1);
+  EXPECT_DOUBLE_EQ(in["skipped"][1]["time"].get<double>(), 2.5);
+  EXPECT_EQ(in["skipped"][1]["reason"], "insufficient_data");
+  EXPECT_FALSE(in["skipped"][1]["message"].get<std::string>().empty());
+  EXPECT_DOUBLE_EQ(in["time_to"].get<double>(), 2.5);
+  // The records after it keep their place on the time axis and are diagnosed.
+  EXPECT_EQ(d["inputs"][5]["windows"], 2);
+  EXPECT_DOUBLE_EQ(d["inputs"][6]["time_to"].get<double>(), 3.5);
+  EXPECT_EQ(d["levels"]["R1"], "ERROR");
+  for (const auto& a : d["alerts"]) EXPECT_EQ(a["fault"], "coil_resistance") << a.dump();
+  std::ifstream summary(dir / "out" / "summary.txt");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("2 window(s) skipped, not identified: insufficient_data 2"));
 }
 
 TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
@@ -199,7 +305,8 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     const auto r = run_ambid("diagnose" + joined(files) + out);
     EXPECT_NE(r.status, 0);
     EXPECT_THAT(r.output, HasSubstr("hot5.json"));
-    EXPECT_THAT(r.output, HasSubstr("no physical value of R1"));  // closed-loop gives no amb1dof physics
+    // Refused before any window is identified: diagnostics knows no fault signatures of it.
+    EXPECT_THAT(r.output, HasSubstr("diagnose: unknown plant 'lamstf' (known: amb1dof_voltage, maglev1coil_voltage)"));
   }
   {
     nlohmann::json sidecar = read_json(files[3]);

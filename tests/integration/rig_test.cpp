@@ -29,7 +29,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using namespace std::chrono_literals;
 
-const std::string nominal = std::string(AMBID_SOURCE_DIR) + "/deploy/config/nominal-bearing.json";
+const std::string nominal = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/quiet-bearing.json";
 
 std::size_t count_of(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
@@ -251,7 +251,7 @@ TEST(Rig, BadRigAddressesAreRefusedAndThePlantKeepsItsSource) {
       {"127.0.0.1", "expected A.B.C.D:PORT"},
       {"127.0.0.1:99999", "port 99999 outside 1..65535"},
       {"192.0.2.1:19184", "is not on loopback; set \"rig_allow_remote\": true"},
-      {"127.0.0.1:19184", "rig 127.0.0.1:19184 did not answer HELLO within 2 s"}};  // nobody listens
+      {"127.0.0.1:19184", "rig 127.0.0.1:19184 did not answer HELLO within 3 s"}};  // nobody listens
   for (const auto& [target, why] : cases) {
     const CommandResult r = stack.ambid("source set rig " + target);
     EXPECT_EQ(r.status, 1) << r.output;

@@ -226,5 +226,22 @@ TEST(RigFrame, RandomBytesNeverDecode) {
   }
 }
 
+TEST(RigFrame, FitTextCutsLongTextsAtACharacterBoundary) {
+  EXPECT_EQ(fit_text("short reason"), "short reason");
+  const std::string huge = "amplitude " + std::string(400, '9') + " V above the limit";
+  const std::string cut = fit_text(huge);
+  EXPECT_EQ(cut.size(), kMaxText);
+  EXPECT_EQ(cut.substr(0, 11), "amplitude 9");
+  EXPECT_EQ(cut.substr(cut.size() - 3), "...");
+  // 7 bytes: "ab" + the 2-byte "\u00b5" + "..." fits, a 3rd byte would split the next "\u00b5".
+  EXPECT_EQ(fit_text("ab\u00b5\u00b5\u00b5\u00b5", 8), "ab\u00b5...");
+  EXPECT_EQ(fit_text("abcdef", 2), "..");
+  // The cut text is a valid frame field: a NACK quoting 1e300 encodes and decodes.
+  const Frame nack{7, ExciteReply{3, false, cut}};
+  const Decoded back = decode(encode(nack));
+  ASSERT_TRUE(back.frame);
+  EXPECT_EQ(*back.frame, nack);
+}
+
 }  // namespace
 }  // namespace ambid::rig
