@@ -50,11 +50,11 @@ struct ImportOptions {
   // contract sidecar. Its y and u signals must all be mapped (any order); its r signals too,
   // unless reconstruct_r.
   std::optional<Experiment> template_sidecar;
-  std::string plant_model;  // without a template: plant.model (parameters stay empty)
-  std::string name;         // empty: the template's name, else the file's stem
-  double sample_time = 0.0;  // s; 0: the mapping's, the template's, else the median step of t
-  bool resample = false;     // non-uniform t: interpolate linearly onto the uniform grid
-  double max_gap = 0.0;      // resampling refuses a step of t longer than this (s); 0: 10 sample times
+  std::string plant_model;     // without a template: plant.model (parameters stay empty)
+  std::string name;            // empty: the template's name, else the file's stem
+  double sample_time = 0.0;    // s; 0: the mapping's, the template's, else the median step of t
+  bool resample = false;       // non-uniform t: interpolate linearly onto the uniform grid
+  double max_gap = 0.0;        // resampling refuses a step of t longer than this (s); 0: 10 sample times
   bool reconstruct_r = false;  // r = u - controller output (needs the template's controller)
 };
 

@@ -19,12 +19,10 @@ struct Unit {
 };
 
 // The one list of units a mapping may name; "u" stands in for the micro sign.
-constexpr std::array kUnits{Unit{"m", 1.0, "m"},     Unit{"mm", 1e-3, "m"},  Unit{"um", 1e-6, "m"},
-                            Unit{"µm", 1e-6, "m"},   Unit{"A", 1.0, "A"},    Unit{"mA", 1e-3, "A"},
-                            Unit{"uA", 1e-6, "A"},   Unit{"µA", 1e-6, "A"},  Unit{"V", 1.0, "V"},
-                            Unit{"mV", 1e-3, "V"},   Unit{"N", 1.0, "N"},    Unit{"rad", 1.0, "rad"},
-                            Unit{"s", 1.0, "s"},     Unit{"ms", 1e-3, "s"},  Unit{"us", 1e-6, "s"},
-                            Unit{"µs", 1e-6, "s"}};
+constexpr std::array kUnits{Unit{"m", 1.0, "m"}, Unit{"mm", 1e-3, "m"}, Unit{"um", 1e-6, "m"}, Unit{"µm", 1e-6, "m"},
+                            Unit{"A", 1.0, "A"}, Unit{"mA", 1e-3, "A"}, Unit{"uA", 1e-6, "A"}, Unit{"µA", 1e-6, "A"},
+                            Unit{"V", 1.0, "V"}, Unit{"mV", 1e-3, "V"}, Unit{"N", 1.0, "N"},   Unit{"rad", 1.0, "rad"},
+                            Unit{"s", 1.0, "s"}, Unit{"ms", 1e-3, "s"}, Unit{"us", 1e-6, "s"}, Unit{"µs", 1e-6, "s"}};
 
 const Unit* find_unit(std::string_view name) {
   for (const Unit& u : kUnits)
@@ -37,8 +35,8 @@ const Unit* find_unit(std::string_view name) {
 std::string import_units() {
   std::string list;
   for (const Unit& u : kUnits)
-    list += (list.empty() ? "" : ", ") + std::string(u.name) + " (" + number_text(u.factor) + " " + std::string(u.si) +
-            ")";
+    list +=
+        (list.empty() ? "" : ", ") + std::string(u.name) + " (" + number_text(u.factor) + " " + std::string(u.si) + ")";
   return list;
 }
 

@@ -56,7 +56,8 @@ class CsvColumns : public RecordedColumns {
       const std::string_view cell = cells_[k * stride + it->second];
       const std::optional<double> v = parse_number(cell);
       if (!v || !std::isfinite(*v))
-        throw Error("line " + std::to_string(line_of_row_[k]) + ", column '" + source + "': expected a finite number, got " +
+        throw Error("line " + std::to_string(line_of_row_[k]) + ", column '" + source +
+                    "': expected a finite number, got " +
                     (cell.empty() ? std::string("an empty cell") : quote_excerpt(cell)));
       values(Eigen::Index(k)) = *v;
     }

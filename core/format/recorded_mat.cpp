@@ -31,17 +31,28 @@ double element(const matvar_t& var, std::size_t i) {
 
 double element_as_double(const matvar_t& var, std::size_t i) {
   switch (var.class_type) {
-    case MAT_C_DOUBLE: return element<double>(var, i);
-    case MAT_C_SINGLE: return element<float>(var, i);
-    case MAT_C_INT8: return element<std::int8_t>(var, i);
-    case MAT_C_UINT8: return element<std::uint8_t>(var, i);
-    case MAT_C_INT16: return element<std::int16_t>(var, i);
-    case MAT_C_UINT16: return element<std::uint16_t>(var, i);
-    case MAT_C_INT32: return element<std::int32_t>(var, i);
-    case MAT_C_UINT32: return element<std::uint32_t>(var, i);
-    case MAT_C_INT64: return element<std::int64_t>(var, i);
-    case MAT_C_UINT64: return element<std::uint64_t>(var, i);
-    default: throw Error("unsupported MAT class");  // excluded by the caller's check
+    case MAT_C_DOUBLE:
+      return element<double>(var, i);
+    case MAT_C_SINGLE:
+      return element<float>(var, i);
+    case MAT_C_INT8:
+      return element<std::int8_t>(var, i);
+    case MAT_C_UINT8:
+      return element<std::uint8_t>(var, i);
+    case MAT_C_INT16:
+      return element<std::int16_t>(var, i);
+    case MAT_C_UINT16:
+      return element<std::uint16_t>(var, i);
+    case MAT_C_INT32:
+      return element<std::int32_t>(var, i);
+    case MAT_C_UINT32:
+      return element<std::uint32_t>(var, i);
+    case MAT_C_INT64:
+      return element<std::int64_t>(var, i);
+    case MAT_C_UINT64:
+      return element<std::uint64_t>(var, i);
+    default:
+      throw Error("unsupported MAT class");  // excluded by the caller's check
   }
 }
 
@@ -56,8 +67,10 @@ bool is_real_numeric(const matvar_t& var) {
     case MAT_C_INT32:
     case MAT_C_UINT32:
     case MAT_C_INT64:
-    case MAT_C_UINT64: return !var.isComplex && var.data != nullptr;
-    default: return false;
+    case MAT_C_UINT64:
+      return !var.isComplex && var.data != nullptr;
+    default:
+      return false;
   }
 }
 

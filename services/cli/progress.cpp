@@ -45,8 +45,7 @@ void Progress::update(const std::string& stage, std::size_t done, std::size_t to
   std::string line = command_ + ": " + stage + " " + std::to_string(done) + "/" + std::to_string(total) + ", " +
                      seconds(elapsed) + " elapsed";
   // The items of a stage take about equally long (windows of one length, rows of one file).
-  if (done > 0 && done < total)
-    line += ", about " + seconds(in_stage / double(done) * double(total - done)) + " left";
+  if (done > 0 && done < total) line += ", about " + seconds(in_stage / double(done) * double(total - done)) + " left";
   const std::size_t width = line.size();
   if (line.size() < width_) line += std::string(width_ - line.size(), ' ');
   width_ = width;

@@ -89,15 +89,16 @@ TEST(ControllerReplay, LimitsTravelThroughTheSidecarAndBadOnesAreRefused) {
   EXPECT_THAT(read.warnings.back(), HasSubstr("1 of 6 samples have a controller clamp acting"));
 
   e.controller->state_limits = {Limit{2.0, 1.0}};
-  EXPECT_THAT([&] {
-    try {
-      e.validate();
-    } catch (const Error& error) {
-      return std::string(error.what());
-    }
-    return std::string("(accepted)");
-  }(),
-              HasSubstr("controller.state_limits[0] must be [lo, hi] with lo < hi, got [2, 1]"));
+  EXPECT_THAT(
+      [&] {
+        try {
+          e.validate();
+        } catch (const Error& error) {
+          return std::string(error.what());
+        }
+        return std::string("(accepted)");
+      }(),
+      HasSubstr("controller.state_limits[0] must be [lo, hi] with lo < hi, got [2, 1]"));
   e.controller->state_limits = {Limit{}, Limit{}};
   EXPECT_THROW(e.validate(), Error);
   fs::remove_all(dir);

@@ -59,13 +59,13 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
   Eigen::MatrixXd matrix(n, 8);  // columns [r2, x, u1, t, i2, r1, u2, i1]
   matrix << e.r.col(1), e.y.col(0), e.u.col(0), e.t, e.y.col(2), e.r.col(0), e.u.col(1), e.y.col(1);
   test::write_mat(dir / "matrix.mat", {{"log", matrix}});
-  const Model from_matrix = identify_experiment(
-      import_experiment(dir / "matrix.mat",
-                        mapping("log(:,4)", {"x=log(:,2)", "i1=log(:,8)", "i2=log(:,5)"}, {"u1=log(:,3)", "u2=log(:,7)"},
-                                {"r1=log(:,6)", "r2=log(:,1)"}),
-                        options)
-          .experiment,
-      deadbeat);
+  const Model from_matrix =
+      identify_experiment(import_experiment(dir / "matrix.mat",
+                                            mapping("log(:,4)", {"x=log(:,2)", "i1=log(:,8)", "i2=log(:,5)"},
+                                                    {"u1=log(:,3)", "u2=log(:,7)"}, {"r1=log(:,6)", "r2=log(:,1)"}),
+                                            options)
+                              .experiment,
+                          deadbeat);
   expect_same_parameters(from_matrix, original, 0.0, "MAT matrix");
 
   test::write_mat(dir / "vectors.mat", {{"gap_um", e.y.col(0) * 1e6},
@@ -77,13 +77,13 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
                                         {"exc2", e.r.col(1)}});
   ImportOptions no_time = options;
   no_time.sample_time = e.sample_time;
-  const Model from_vectors = identify_experiment(
-      import_experiment(dir / "vectors.mat",
-                        mapping("", {"x=gap_um:um", "i1=coil1_mA:mA", "i2=coil2_mA:mA"}, {"u1=cmd1", "u2=cmd2"},
-                                {"r1=exc1", "r2=exc2"}),
-                        no_time)
-          .experiment,
-      deadbeat);
+  const Model from_vectors =
+      identify_experiment(import_experiment(dir / "vectors.mat",
+                                            mapping("", {"x=gap_um:um", "i1=coil1_mA:mA", "i2=coil2_mA:mA"},
+                                                    {"u1=cmd1", "u2=cmd2"}, {"r1=exc1", "r2=exc2"}),
+                                            no_time)
+                              .experiment,
+                          deadbeat);
   expect_same_parameters(from_vectors, original, 1e-9, "MAT vectors in um/mA");
 
   std::ofstream csv(dir / "logger.csv");
@@ -94,10 +94,10 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
         << shortest(e.r(k, 1)) << "," << shortest(e.r(k, 0)) << "\n";
   csv.close();
   const Model from_csv = identify_experiment(
-      import_experiment(dir / "logger.csv",
-                        mapping("ms:ms", {"x=pos (mm):mm", "i1=i1 (mA):mA", "i2=i2 (mA):mA"}, {"u1=u1", "u2=u2"},
-                                {"r1=w1", "r2=w2"}),
-                        options)
+      import_experiment(
+          dir / "logger.csv",
+          mapping("ms:ms", {"x=pos (mm):mm", "i1=i1 (mA):mA", "i2=i2 (mA):mA"}, {"u1=u1", "u2=u2"}, {"r1=w1", "r2=w2"}),
+          options)
           .experiment,
       deadbeat);
   expect_same_parameters(from_csv, original, 1e-9, "CSV in mm/mA/ms");

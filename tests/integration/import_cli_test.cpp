@@ -106,8 +106,8 @@ TEST(ImportCli, IdentifyAndDiagnoseCountTheClampedSamples) {
   ASSERT_EQ(sim.status, 0) << sim.output;
   const ReadResult read = read_experiment(dir / "run");
   ASSERT_GT(read.clamped_samples, 0);
-  const CommandResult r = run_ambid("identify " + (dir / "run").string() + " --method deadbeat --out " +
-                                    (dir / "model.json").string());
+  const CommandResult r =
+      run_ambid("identify " + (dir / "run").string() + " --method deadbeat --out " + (dir / "model.json").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("not exogenous): " + std::to_string(read.clamped_samples) + " of 4000"));
 }

@@ -37,7 +37,7 @@ TEST(ControllerLimits, SimulationAndReplayAgreeOnClampsAndControllerOutput) {
   // u = u_op + uf + r at every sample, the state clamps included.
   const Eigen::MatrixXd uf = e.u_deviation() - e.r_deviation();
   EXPECT_LT((uf - replay.output).cwiseAbs().maxCoeff(), 1e-9);
-  EXPECT_GT((free.u - e.u).cwiseAbs().maxCoeff(), 1e-3);  // the clamps changed the run
+  EXPECT_GT((free.u - e.u).cwiseAbs().maxCoeff(), 1e-3);               // the clamps changed the run
   EXPECT_EQ(replay.states.col(0).cwiseAbs().maxCoeff(), 0.8 * reach);  // the state clamp held it
 }
 
