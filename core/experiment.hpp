@@ -5,6 +5,7 @@
 //
 // Error messages name the offending field by its sidecar key path (`signals.u`,
 // `controller.B`, `operating_point.x`), so the file reader only has to prefix the file name.
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -15,6 +16,13 @@
 #include "core/json_value.hpp"
 
 namespace ambid {
+
+// A clamp [lo, hi]; an infinite bound is no bound on that side (null in the sidecar).
+struct Limit {
+  double lo = -std::numeric_limits<double>::infinity();
+  double hi = std::numeric_limits<double>::infinity();
+  bool acts_on(double value) const { return value <= lo || value >= hi; }  // at or beyond a bound
+};
 
 // The discrete controller that closed the loop:
 //   xc[k+1] = A xc[k] + B v[k],  uf[k] = C xc[k] + D v[k],  u[k] = uf[k] + r[k]  (deviations)
@@ -27,11 +35,15 @@ struct StateSpaceController {
   std::vector<std::string> outputs;
   Eigen::MatrixXd A, B, C, D;
   Eigen::VectorXd initial_state;  // empty means zero
+  // Optional clamps (controller.output_limits, state_limits): one per output, on the plant
+  // input in absolute units, and one per state, in deviations. Empty: none.
+  std::vector<Limit> output_limits, state_limits;
 
   Eigen::Index states() const { return A.rows(); }
   // Throws Error when the kind is not "state_space", the sample time is not positive and
   // finite, inputs/outputs are empty or repeat a name, an output is not in `plant_inputs`,
-  // dimensions disagree, an entry is not finite, or D has a non-zero column for a signal in
+  // dimensions disagree, an entry is not finite, a limit list has the wrong length or a limit
+  // with lo >= hi or NaN, or D has a non-zero column for a signal in
   // `plant_inputs` (an algebraic loop through u).
   void validate(const std::vector<std::string>& plant_inputs) const;
 };

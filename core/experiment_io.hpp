@@ -23,11 +23,19 @@ struct ReadOptions {
 struct ReadResult {
   Experiment experiment;              // passes Experiment::validate()
   std::vector<std::string> warnings;  // each names its file
+  // Per sample: a clamp of the controller (controller.output_limits, state_limits) acted, so
+  // the sample is not exogenous (core/controller_replay.hpp); all false without limits.
+  std::vector<bool> clamped;
+  Eigen::Index clamped_samples = 0;
 };
 
 // `path` may name the .json sidecar, the .csv, or the stem without extension.
 // Throws Error whose message names the file, the row or key, and what was expected.
 ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions& options = {});
+
+// The sidecar alone (`path` names the .json, the .csv or the stem), an experiment without
+// samples: a template for `ambid import`. Errors name the file.
+Experiment read_experiment_sidecar(const std::filesystem::path& path);
 
 // Writes `stem.csv` and `stem.json` (creating the parent directory); `stem` may carry either
 // extension or none. Validates first and writes nothing for an invalid experiment. Each file

@@ -159,6 +159,8 @@ Scenario build_amb1dof_scenario(const ScenarioOptions& o) {
     s.options.input_lower = Eigen::VectorXd::Constant(2, -o.input_limit);
     s.options.input_upper = Eigen::VectorXd::Constant(2, o.input_limit);
     simulation["input_limit"] = o.input_limit;
+    // The contract's form of the same clamp, so readers mark the clamped samples.
+    h.controller->output_limits.assign(h.controller->outputs.size(), Limit{-o.input_limit, o.input_limit});
   }
   // What the simulator knew and the sidecar's nominal view does not: kept under its own key so
   // tests and users can compare an identification with the truth.

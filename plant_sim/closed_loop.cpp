@@ -63,6 +63,7 @@ struct Loop {
   double dt;
   bool excited, limited;
   const Eigen::VectorXd &lower, &upper;
+  const std::vector<Limit>& state_limits;  // controller.state_limits (deviations); empty: none
   std::vector<Route> from_output{}, from_input{}, from_excitation{};
   Eigen::VectorXd y_op{}, u_op{}, r_op{};
   Eigen::VectorXd x{};  // plant state, starts at the operating point
@@ -108,9 +109,10 @@ struct Loop {
       out.u.row(k) = u_cmd.transpose();
       if (excited) out.r.row(k) = (r_op + options.excitation.row(k).transpose()).transpose();
 
+      bool clamped = false;
       if (limited) {
         u_applied = u_cmd.cwiseMax(lower).cwiseMin(upper);
-        if ((u_applied.array() != u_cmd.array()).any()) ++saturated;
+        clamped = (u_applied.array() != u_cmd.array()).any();
       } else {
         u_applied = u_cmd;
       }
@@ -129,7 +131,13 @@ struct Loop {
         throw Error(msg.str());
       }
       xc_next.noalias() = A * xc + B * v;
+      for (std::size_t i = 0; i < state_limits.size(); ++i) {  // anti-windup clamps
+        const double free = xc_next(Eigen::Index(i));
+        xc_next(Eigen::Index(i)) = std::clamp(free, state_limits[i].lo, state_limits[i].hi);
+        if (xc_next(Eigen::Index(i)) != free) clamped = true;
+      }
       xc = xc_next;
+      if (clamped) ++saturated;
     }
     return saturated;
   }
@@ -171,14 +179,18 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   check_size("process_noise_std", options.process_noise_std, nw);
   check_size("input_lower", options.input_lower, nu);
   check_size("input_upper", options.input_upper, nu);
-  const bool limited = options.input_lower.size() != 0 || options.input_upper.size() != 0;
-  const Eigen::VectorXd lower =
-      options.input_lower.size() ? options.input_lower : Eigen::VectorXd::Constant(nu, -INFINITY);
-  const Eigen::VectorXd upper =
-      options.input_upper.size() ? options.input_upper : Eigen::VectorXd::Constant(nu, INFINITY);
+  const bool limited =
+      options.input_lower.size() != 0 || options.input_upper.size() != 0 || !ctrl.output_limits.empty();
+  Eigen::VectorXd lower = options.input_lower.size() ? options.input_lower : Eigen::VectorXd::Constant(nu, -INFINITY);
+  Eigen::VectorXd upper = options.input_upper.size() ? options.input_upper : Eigen::VectorXd::Constant(nu, INFINITY);
+  // controller.output_limits clamp the plant input too (outputs are the u signals, in order).
+  for (std::size_t j = 0; j < ctrl.output_limits.size(); ++j) {
+    lower(Eigen::Index(j)) = std::max(lower(Eigen::Index(j)), ctrl.output_limits[j].lo);
+    upper(Eigen::Index(j)) = std::min(upper(Eigen::Index(j)), ctrl.output_limits[j].hi);
+  }
   const int substeps = options.substeps > 0 ? options.substeps : kDefaultSubsteps;
 
-  Loop loop{truth, options, substeps, dt, excited, limited, lower, upper};
+  Loop loop{truth, options, substeps, dt, excited, limited, lower, upper, ctrl.state_limits};
   for (std::size_t j = 0; j < ctrl.inputs.size(); ++j) {
     const InputRoute route = route_of(ctrl.inputs[j], header);
     auto& target = route.source == Source::output  ? loop.from_output

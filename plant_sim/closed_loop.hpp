@@ -20,14 +20,16 @@ struct ClosedLoopOptions {
   // Excitation r added to the controller output, deviations, samples x controller outputs, in
   // the order of the controller's `outputs`. Empty: no excitation is recorded.
   Eigen::MatrixXd excitation;
-  Eigen::VectorXd measurement_noise_std;     // per plant output, absolute units; empty: none
-  Eigen::VectorXd process_noise_std;         // per plant disturbance; empty: none
-  Eigen::VectorXd input_lower, input_upper;  // absolute actuator limits; empty: none
+  Eigen::VectorXd measurement_noise_std;  // per plant output, absolute units; empty: none
+  Eigen::VectorXd process_noise_std;      // per plant disturbance; empty: none
+  // Absolute actuator limits; empty: none. The controller's output_limits clamp as well (the
+  // tighter bound wins) and its state_limits clamp its state update.
+  Eigen::VectorXd input_lower, input_upper;
   std::uint64_t seed = 0;
 };
 
 struct ClosedLoopStatistics {
-  Eigen::Index saturated_samples = 0;  // samples where at least one input hit its limit
+  Eigen::Index saturated_samples = 0;  // samples where an input limit or a controller state clamp acted
 };
 
 // Runs `truth` in closed loop with `header.controller` and returns `header` with t, y, u, r

@@ -6,6 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config git
   libeigen3-dev libceres-dev
   nlohmann-json3-dev libcli11-dev libspdlog-dev libsqlite3-dev
+  libmatio-dev  # MAT v5 files of `ambid import` (via pkg-config)
   libgtest-dev libgmock-dev libbenchmark-dev
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools cyclonedds-dev cyclonedds-tools
   libsystemd-dev prometheus-cpp-dev

@@ -51,6 +51,18 @@ void require_finite(const Eigen::VectorXd& v, const std::string& key) {
     if (!std::isfinite(v(i))) throw Error(key + "[" + std::to_string(i) + "] must be finite, got " + number_text(v(i)));
 }
 
+void require_limits(const std::vector<Limit>& limits, Eigen::Index count, const std::string& key,
+                    const std::string& meaning) {
+  if (limits.empty()) return;
+  if (static_cast<Eigen::Index>(limits.size()) != count)
+    throw Error(key + " must have " + std::to_string(count) + " entries (" + meaning + "), got " +
+                std::to_string(limits.size()));
+  for (std::size_t i = 0; i < limits.size(); ++i)
+    if (!(limits[i].lo < limits[i].hi))
+      throw Error(key + "[" + std::to_string(i) + "] must be [lo, hi] with lo < hi, got [" + number_text(limits[i].lo) +
+                  ", " + number_text(limits[i].hi) + "]");
+}
+
 void require_distinct(const std::vector<std::string>& names, const std::string& key) {
   std::set<std::string> seen;
   for (const auto& n : names)
@@ -123,6 +135,8 @@ void StateSpaceController::validate(const std::vector<std::string>& plant_inputs
   require_finite(C, "controller.C");
   require_finite(D, "controller.D");
   require_finite(initial_state, "controller.initial_state");
+  require_limits(output_limits, q, "controller.output_limits", "one per output");
+  require_limits(state_limits, n, "controller.state_limits", "one per state");
   for (Eigen::Index j = 0; j < p; ++j) {
     const std::string& in = inputs[static_cast<std::size_t>(j)];
     if (!contains(plant_inputs, in)) continue;

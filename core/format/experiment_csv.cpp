@@ -6,48 +6,12 @@
 #include <optional>
 
 #include "core/error.hpp"
+#include "core/format/csv_lines.hpp"
 #include "core/format/experiment_text.hpp"
+#include "core/format/resample.hpp"
 
 namespace ambid {
 namespace {
-
-bool is_blank(std::string_view text) { return text.find_first_not_of(" \t\r\n") == std::string_view::npos; }
-
-// Lines without their '\n' or "\r\n", numbered from 1.
-class Lines {
- public:
-  explicit Lines(std::string_view text) : text_(text) {}
-  std::optional<std::string_view> next() {
-    if (pos_ >= text_.size()) return std::nullopt;
-    const std::size_t end = std::min(text_.find('\n', pos_), text_.size());
-    std::string_view line = text_.substr(pos_, end - pos_);
-    pos_ = end + 1;
-    ++number_;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    return line;
-  }
-  std::size_t number() const { return number_; }
-  bool rest_is_blank() const { return pos_ >= text_.size() || is_blank(text_.substr(pos_)); }
-
- private:
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::size_t number_ = 0;
-};
-
-// Cells of one line, with spaces and tabs around each cell removed.
-void split_cells(std::string_view line, std::vector<std::string_view>& cells) {
-  cells.clear();
-  for (std::size_t start = 0;;) {
-    const std::size_t comma = std::min(line.find(',', start), line.size());
-    std::string_view cell = line.substr(start, comma - start);
-    while (!cell.empty() && (cell.front() == ' ' || cell.front() == '\t')) cell.remove_prefix(1);
-    while (!cell.empty() && (cell.back() == ' ' || cell.back() == '\t')) cell.remove_suffix(1);
-    cells.push_back(cell);
-    if (comma == line.size()) return;
-    start = comma + 1;
-  }
-}
 
 std::string at(std::size_t line) { return "line " + std::to_string(line); }
 
@@ -98,30 +62,16 @@ std::vector<std::size_t> locate_columns(const std::vector<std::string_view>& hea
   return columns;
 }
 
-// Linear interpolation of `values` (rows sampled at strictly increasing `t`) onto the grid
-// t(0) + k T that spans the data.
+// Linear interpolation onto the sample_time grid, refusing a grid much denser than the rows.
 void resample_uniform(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, std::size_t last_line) {
   const Eigen::Index n = t.size();
-  // The tolerance keeps the last sample when the span is a whole number of steps.
-  const double steps = std::floor((t(n - 1) - t(0)) / T + 1e-9);
   // Interpolation invents the samples between rows; ten per row is no longer jitter but a
   // wrong sample_time or a broken clock (and a bad timestamp would exhaust memory).
-  if (steps + 1 > 10.0 * static_cast<double>(n))
+  if (std::floor((t(n - 1) - t(0)) / T + 1e-9) + 1 > 10.0 * static_cast<double>(n))
     throw Error("resampling " + std::to_string(n) + " rows spanning t = " + number_text(t(0)) + " to " +
                 number_text(t(n - 1)) + " (" + at(last_line) + ") every sample_time " + number_text(T) +
                 " s would invent more than 10 samples per row; check sample_time and the t column");
-  const auto m = static_cast<Eigen::Index>(steps) + 1;
-  Eigen::VectorXd grid(m);
-  Eigen::MatrixXd out(m, values.cols());
-  Eigen::Index j = 0;
-  for (Eigen::Index k = 0; k < m; ++k) {
-    grid(k) = t(0) + static_cast<double>(k) * T;
-    while (j + 2 < n && t(j + 1) < grid(k)) ++j;
-    const double w = std::clamp((grid(k) - t(j)) / (t(j + 1) - t(j)), 0.0, 1.0);
-    out.row(k) = (1.0 - w) * values.row(j) + w * values.row(j + 1);
-  }
-  t = std::move(grid);
-  values = std::move(out);
+  resample_linear(t, values, T);
 }
 
 }  // namespace

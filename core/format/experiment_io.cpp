@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "core/experiment_file.hpp"
 #include "core/format/experiment_csv.hpp"
@@ -52,8 +53,25 @@ ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions&
   const std::string csv_text = read_text_file(files.csv);
   in_file(files.csv, result.warnings, [&](std::vector<std::string>& warnings) {
     parse_samples_csv(csv_text, options, result.experiment, warnings);
+    ControllerReplay replay = clamped_samples(result.experiment);
+    result.clamped = std::move(replay.clamped);
+    result.clamped_samples = replay.clamped_samples;
+    if (result.clamped_samples > 0)
+      warnings.push_back(std::to_string(result.clamped_samples) + " of " + std::to_string(result.experiment.samples()) +
+                         " samples have a controller clamp acting (controller.output_limits/state_limits): "
+                         "not exogenous");
   });
   return result;
+}
+
+Experiment read_experiment_sidecar(const std::filesystem::path& path) {
+  const ExperimentFiles files = files_of(path);
+  const std::string text = read_text_file(files.json);
+  std::vector<std::string> warnings;
+  Experiment e;
+  in_file(files.json, warnings,
+          [&](std::vector<std::string>& local) { e = parse_sidecar(parse_sidecar_text(text), local); });
+  return e;
 }
 
 void write_experiment(const Experiment& experiment, const std::filesystem::path& stem) {

@@ -1,6 +1,7 @@
 #include "core/format/experiment_sidecar.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -15,13 +16,36 @@
 // for every y and u signal (the contract calls it "the value of every named signal" and lets
 // only excitation signals default to 0). Optional: `signals.r` (no excitation recorded) and
 // `controller` (only methods that need it refuse to run); inside `controller` everything but
-// `initial_state` (default zero) is required.
+// `initial_state` (default zero), `output_limits` and `state_limits` (no clamps) is required.
 
 namespace ambid {
 namespace {
 
 using nlohmann::json;
 using namespace json_fields;
+
+// `null` (no limit) or `[lo, hi]` whose entries are numbers or null (no bound on that side).
+std::vector<Limit> parse_limits(const json& value, const std::string& path) {
+  if (!value.is_array()) wrong_type(value, path, "an array of [lo, hi] pairs or nulls");
+  std::vector<Limit> limits(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    const json& pair = value[i];
+    const std::string at = indexed(path, i);
+    if (pair.is_null()) continue;
+    if (!pair.is_array() || pair.size() != 2) wrong_type(pair, at, "[lo, hi] or null");
+    if (!pair[0].is_null()) limits[i].lo = as_number(pair[0], indexed(at, 0));
+    if (!pair[1].is_null()) limits[i].hi = as_number(pair[1], indexed(at, 1));
+  }
+  return limits;
+}
+
+json limits_json(const std::vector<Limit>& limits) {
+  json out = json::array();
+  auto bound = [](double v) { return std::isfinite(v) ? json(v) : json(); };
+  for (const Limit& l : limits)
+    out.push_back(std::isfinite(l.lo) || std::isfinite(l.hi) ? json::array({bound(l.lo), bound(l.hi)}) : json());
+  return out;
+}
 
 StateSpaceController parse_controller(const json& value, json& extra) {
   const std::string p = "controller";
@@ -43,6 +67,10 @@ StateSpaceController parse_controller(const json& value, json& extra) {
       throw Error("key `controller.initial_state` must have " + std::to_string(k.states()) + " entries (states), got " +
                   std::to_string(k.initial_state.size()));
   }
+  if (const auto it = c.find("output_limits"); it != c.end())
+    k.output_limits = parse_limits(*it, "controller.output_limits");
+  if (const auto it = c.find("state_limits"); it != c.end())
+    k.state_limits = parse_limits(*it, "controller.state_limits");
   json unknown = json::object();
   keep_unknown(c, defined_sidecar_keys().at(p), unknown);
   if (!unknown.empty()) extra[p] = unknown;
@@ -56,7 +84,9 @@ const std::map<std::string, std::set<std::string>>& defined_sidecar_keys() {
       {"", {"format", "name", "sample_time", "plant", "signals", "operating_point", "controller"}},
       {"plant", {"model", "parameters"}},
       {"signals", {"y", "u", "r"}},
-      {"controller", {"kind", "sample_time", "inputs", "outputs", "A", "B", "C", "D", "initial_state"}}};
+      {"controller",
+       {"kind", "sample_time", "inputs", "outputs", "A", "B", "C", "D", "initial_state", "output_limits",
+        "state_limits"}}};
   return keys;
 }
 
@@ -156,6 +186,8 @@ json sidecar_json(const Experiment& e) {
          {"A", matrix_json(k.A)}, {"B", matrix_json(k.B)},        {"C", matrix_json(k.C)}, {"D", matrix_json(k.D)}};
     if (k.initial_state.size() > 0)
       c["initial_state"] = std::vector<double>(k.initial_state.data(), k.initial_state.data() + k.initial_state.size());
+    if (!k.output_limits.empty()) c["output_limits"] = limits_json(k.output_limits);
+    if (!k.state_limits.empty()) c["state_limits"] = limits_json(k.state_limits);
   }
   // validate_metadata() guaranteed extra never collides with a defined key.
   merge_unknown(j, e.extra.json());

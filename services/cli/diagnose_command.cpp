@@ -47,6 +47,7 @@
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
+#include "services/cli/progress.hpp"
 #include "services/report/figure.hpp"
 #include "services/report/output_lock.hpp"
 #include "services/report/svg.hpp"
@@ -64,6 +65,7 @@ struct DiagnoseArguments {
   std::string method = ident::kDefaultWindowMethod;
   std::string plant_id = "plant";
   std::string out;
+  bool quiet = false;  // no progress line on stderr
 };
 
 struct Skipped {
@@ -79,6 +81,7 @@ struct Input {
   std::vector<Skipped> skipped;
   double time_to = 0.0;            // end of its last window, identified or skipped
   std::optional<Experiment> loop;  // an experiment's sidecar (no samples): plant and controller
+  Eigen::Index clamped_samples = 0;  // samples where a controller clamp acted (not exogenous)
 };
 
 void report_skipped(const Input& in, std::size_t windows) {
@@ -123,9 +126,10 @@ Input model_input(const std::string& file, double start, const std::string& plan
 }
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
-                       const std::string& plant_id) {
+                       const std::string& plant_id, Progress& progress) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
-  const Experiment e = read_experiment(file).experiment;
+  const ReadResult read = read_experiment(file);
+  const Experiment& e = read.experiment;
   try {
     diag::require_diagnostics_piece(e.plant.model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
   } catch (const Error& err) {
@@ -139,7 +143,7 @@ Input experiment_input(const std::string& file, double start, double window, con
   } catch (const Error& err) {
     throw Error(file + ": " + err.what());
   }
-  Input in{file, "experiment", {}, {}, start, e};
+  Input in{file, "experiment", {}, {}, start, e, read.clamped_samples};
   in.loop->t.resize(0);
   in.loop->y.resize(0, 0);
   in.loop->u.resize(0, 0);
@@ -151,6 +155,7 @@ Input experiment_input(const std::string& file, double start, double window, con
     throw Error(file + " (" + std::to_string(length) + " s): " + err.what());
   }
   for (std::size_t i = 0; i < parts.size(); ++i) {
+    progress.update("identify the windows of " + file, i, parts.size());
     in.time_to = start + double(i + 1) * double(samples) * e.sample_time;
     options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
     try {
@@ -158,6 +163,7 @@ Input experiment_input(const std::string& file, double start, double window, con
           diag::estimate_window(ident::identify_window(parts[i], options), in.time_to, plant_id, diag::Source::replay));
     } catch (const Error& err) {
       in.skipped.push_back({i + 1, in.time_to, ident::window_failure(err)});
+      progress.clear();
       report_skipped(in, parts.size());
     }
   }
@@ -204,7 +210,8 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
                            {"kind", in.kind},
                            {"windows", in.windows.size()},
                            {"skipped", skipped},
-                           {"time_to", in.time_to}});
+                           {"time_to", in.time_to},
+                           {"clamped_samples", in.clamped_samples}});
   }
   for (const auto& [key, b] : d.baselines)
     j["baselines"][key.second] = {{"mean", b.mean},
@@ -226,7 +233,11 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
   for (const Input& in : inputs)
     s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s)"
       << (in.skipped.empty() ? std::string() : ", " + std::to_string(in.skipped.size()) + " skipped")
-      << ", to t = " << number(in.time_to) << " s\n";
+      << ", to t = " << number(in.time_to) << " s"
+      << (in.clamped_samples ? ", " + std::to_string(in.clamped_samples) +
+                                   " samples with a controller clamp acting (not exogenous; still in the window fits)"
+                             : std::string())
+      << "\n";
   if (const std::size_t n = skipped_total(inputs); n > 0) {
     s << "\n  " << n << " window(s) skipped, not identified:";
     for (const auto& [reason, count] : skipped_by_reason(inputs))
@@ -302,12 +313,13 @@ void run(const DiagnoseArguments& a) {
                 std::to_string(a.inputs.size()) + " input(s) given, more than the baseline are needed");
   if (!(a.window >= 0.0) || !std::isfinite(a.window))
     throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(a.window));
+  Progress progress("ambid diagnose", a.quiet);
   std::vector<Input> inputs;
   double start = 0.0;
   for (const std::string& file : a.inputs) {
     if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
     inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
-                                         : experiment_input(file, start, a.window, a.method, a.plant_id));
+                                         : experiment_input(file, start, a.window, a.method, a.plant_id, progress));
     start = inputs.back().time_to;
   }
   std::size_t baseline_windows = 0;
@@ -342,12 +354,14 @@ void run(const DiagnoseArguments& a) {
   // replaces its predecessor: a failed run (a full disk) leaves the previous run's files as they were.
   const std::filesystem::path store = dir / "trends.sqlite", fresh = dir / ".trends.sqlite.new";
   diag::OfflineDiagnosis d;
+  progress.update("learn the baseline and diagnose the windows", 0, 1);
   try {
     d = diag::diagnose_offline(windows, baseline_windows, fresh, config);
   } catch (...) {
     remove_store(fresh);
     throw;
   }
+  progress.clear();
   const std::string summary = summary_text(a, inputs, baseline_windows, d);
   std::vector<std::pair<std::filesystem::path, std::string>> files = {
       {dir / "diagnosis.json", diagnosis_json(a, inputs, baseline_windows, d).dump(2) + "\n"},
@@ -385,6 +399,7 @@ void add_diagnose_command(CLI::App& app) {
   cmd->footer("--method:\n" + ident::method_table());
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();
+  cmd->add_flag("--quiet", args->quiet, "no progress line on stderr (there is none when stderr is no terminal)");
   cmd->callback([args] { run(*args); });
 }
 

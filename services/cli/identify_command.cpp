@@ -65,6 +65,8 @@ void add_identify_command(CLI::App& app) {
     const Model model = ident::identify_experiment(read.experiment, args->options);
     write_model(model, args->out);
     print_summary(model, args->out);
+    std::cout << "  clamped samples (a controller clamp acted, not exogenous): " << read.clamped_samples << " of "
+              << read.experiment.samples() << (read.clamped_samples ? "; the fit still uses them" : "") << "\n";
   });
 }
 

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   ambid::cli::add_identify_command(app);
   ambid::cli::add_frf_command(app);
   ambid::cli::add_audit_command(app);
+  ambid::cli::add_import_command(app);
   ambid::cli::add_daemon_commands(app);
   ambid::cli::add_operator_commands(app);
   ambid::cli::add_rig_emulator_command(app);
