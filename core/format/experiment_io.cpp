@@ -56,6 +56,18 @@ ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions&
   return result;
 }
 
+Experiment read_sidecar(const std::filesystem::path& path) {
+  const ExperimentFiles files = files_of(path);
+  const std::string sidecar_text = read_json_file(files.json);
+  Experiment e;
+  std::vector<std::string> warnings;  // a sidecar alone has no CSV columns to warn about
+  in_file(files.json, warnings, [&](std::vector<std::string>& w) {
+    e = parse_sidecar(parse_sidecar_text(sidecar_text), w);
+    e.validate_metadata();
+  });
+  return e;
+}
+
 void write_experiment(const Experiment& experiment, const std::filesystem::path& stem) {
   experiment.validate();
   const ExperimentFiles files = files_of(stem);
