@@ -1,5 +1,6 @@
 // `ambid status`: what the running service says about itself: each daemon's latest Health and
-// the plant's current source, collected for --wait seconds.
+// the plant's current source and plant description (id, plant family, controller kind),
+// collected for --wait seconds.
 #include <chrono>
 #include <iostream>
 #include <map>
@@ -7,6 +8,7 @@
 
 #include "services/cli/operator_commands.hpp"
 #include "services/convert/alert.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
 
@@ -26,12 +28,15 @@ void run(const StatusArguments& args) {
   std::map<std::string, bus::PlantSourceState> plants;
   auto responses = bus->reader<bus::FrequencyResponse>();
   std::map<std::string, bus::FrequencyResponse> frfs;
+  auto descriptions = bus->reader<bus::PlantDescription>();
+  std::map<std::string, bus::PlantDescription> described;
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.wait);
   while (std::chrono::steady_clock::now() < end) {
     bus->wait(std::chrono::milliseconds(100));
     for (const auto& h : health->take()) nodes[h.node] = h;
     for (const auto& s : sources->take()) plants[s.plant_id] = s;
     for (const auto& r : responses->take()) frfs[r.plant_id] = r;
+    for (const auto& d : descriptions->take()) described[d.plant_id] = d;
   }
   if (nodes.empty() && plants.empty()) {
     std::cout << "no daemon answered on domain " << args.bus.domain << " within " << args.wait << " s" << std::endl;
@@ -43,6 +48,9 @@ void run(const StatusArguments& args) {
               << (s.command_accepted ? (s.message.empty() ? "" : " (" + s.message + ")")
                                      : " (last command refused: " + s.message + ")")
               << "\n";
+  for (const auto& [id, d] : described)
+    std::cout << "plant " << id << ": description " << d.description_id << ", plant " << d.model << ", controller "
+              << convert::controller_summary(d) << "\n";
   constexpr const char* zones = "-ABCD";
   for (const auto& [id, r] : frfs) {
     std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, " << r.frequencies.size()
