@@ -97,7 +97,12 @@ int run_frf_daemon(const DaemonOptions& options) {
           std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                  std::chrono::duration<double>(config.interval));
       try {
-        responses->write(convert::to_message(ident::analyse_frf(e), options.plant_id, seq, e.t(e.samples() - 1)));
+        // The band this daemon excited: the description on the bus says nothing of the excitation.
+        ident::FrfAnalysisOptions analysis;
+        analysis.f_min = config.excitation.frequencies.at(0);
+        analysis.f_max = config.excitation.frequencies.at(1);
+        responses->write(
+            convert::to_message(ident::analyse_frf(e, analysis), options.plant_id, seq, e.t(e.samples() - 1)));
         runtime.metrics.published.Increment();
         runtime.log("frequency response of the record ending at " + std::to_string(e.t(e.samples() - 1)) + " s");
       } catch (const Error& err) {

@@ -46,7 +46,9 @@ Stack::Stack(const std::string& name, int domain, const std::map<std::string, st
   fs::remove_all(dir_);
   fs::create_directories(dir_);
   const fs::path config = fs::path(AMBID_SOURCE_DIR) / "deploy" / "config";
+  // A swap to the rig emulator (nominal bearing, lqr) reads it with the board's description.
   std::ofstream(dir_ / "plant.json") << R"({"source": "sim", "target": ")" << (config / "nominal-bearing.json").string()
+                                     << R"(", "rig_description": ")" << (config / "rig-description.json").string()
                                      << R"(", "batch_samples": 500, "speed": 10})";
   std::ofstream(dir_ / "identifier.json") << R"({"window": 0.25, "settle": 0.25})";
   std::ofstream(dir_ / "diagnostics.json")
