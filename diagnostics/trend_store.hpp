@@ -90,6 +90,9 @@ class TrendStore {
   // The newest `limit` alerts, newest first; of one plant when plant_id is given.
   std::vector<Alert> latest_alerts(std::size_t limit, const std::optional<std::string>& plant_id = {}) const;
   std::optional<Baseline> baseline(const std::string& plant_id, const std::string& parameter) const;
+  // Removes every baseline of the plant (another bearing under the same plant id: they are
+  // learned again); returns how many. History and alerts stay.
+  std::size_t forget_baselines(const std::string& plant_id);
 
   // Applies the policy in one transaction.
   RetentionReport apply_retention(const RetentionPolicy& policy, double now);

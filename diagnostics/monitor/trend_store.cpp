@@ -165,6 +165,7 @@ struct TrendStore::Impl {
       "SELECT mean, extra_spread, mean_sigma, reported_sigma, windows, origin FROM baselines "
       "WHERE plant_id = ? AND parameter = ?",
       "read baseline"};
+  sqlite::Statement delete_baselines{db, "DELETE FROM baselines WHERE plant_id = ?", "remove baselines"};
   sqlite::Statement delete_old_estimates{db, "DELETE FROM estimates WHERE time < ?", "remove old estimates"};
   sqlite::Statement delete_old_alerts{db, "DELETE FROM alerts WHERE time < ?", "remove old alerts"};
   sqlite::Statement delete_excess_estimates{
@@ -240,6 +241,11 @@ std::optional<Baseline> TrendStore::baseline(const std::string& plant_id, const 
   b.origin = parse_baseline_origin(run.column_text(5));
   b.validate();
   return b;
+}
+
+std::size_t TrendStore::forget_baselines(const std::string& plant_id) {
+  impl_->delete_baselines.run().bind(1, plant_id).execute();
+  return std::size_t(impl_->db.changes());
 }
 
 RetentionReport TrendStore::apply_retention(const RetentionPolicy& policy, double now) {
