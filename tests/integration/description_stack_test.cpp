@@ -3,7 +3,8 @@
 // identified as the offline method identifies the same windows, with no alert and no scenario
 // file anywhere downstream of the plant; a late identifier of the other vendor gets the
 // description; a swap to the other controller raises nothing, the same bearing with R1 +20 %
-// under the new loop an ERROR on coil 1. Domains 196..198; 15-25 s each.
+// under the new loop an ERROR on coil 1; another bearing starts a new baseline and the alerts
+// say so; record -> replay -> identify keeps the description. Domains 196..200; 15-50 s each.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -13,8 +14,11 @@
 #include <fstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "core/experiment_io.hpp"
 #include "diagnostics/trend_store.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/plant_samples.hpp"
 #include "services/daemons/identify_window.hpp"
 #include "stack_support.hpp"
@@ -56,8 +60,8 @@ std::vector<double> offline_r1(const std::string& file) {
 }
 
 void use_replay(const Stack& stack, const std::string& file) {
-  std::ofstream(stack.dir() / "plant.json") << R"({"source": "replay", "target": ")" << file
-                                            << R"(", "batch_samples": 500, "speed": 10})";
+  std::ofstream(stack.dir() / "plant.json")
+      << R"({"source": "replay", "target": ")" << file << R"(", "batch_samples": 500, "speed": 10})";
 }
 
 std::vector<diag::StoredEstimate> r1_history(const Stack& stack) {
@@ -121,6 +125,7 @@ TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultEr
   const std::size_t before = r1_history(stack).size();
   std::this_thread::sleep_for(std::chrono::seconds(4));
   EXPECT_THAT(stack.log("identifier"), HasSubstr(" replaces "));
+  EXPECT_THAT(stack.log("diagnostics"), HasSubstr("the same bearing in another loop"));
   // One window may still be of the lqr record (in flight at the swap).
   expect_offline_values(r1_history(stack), before + 1, offline_r1(pid));
   expect_no_alert(stack);
@@ -134,6 +139,54 @@ TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultEr
   ASSERT_EQ(alerts.status, 0) << alerts.output << stack.log("diagnostics");
   EXPECT_THAT(alerts.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
   EXPECT_THAT(alerts.output, Not(HasSubstr("  R2  "))) << alerts.output;
+}
+
+// The same data under a sidecar whose nominal R1 is 21 ohm: another bearing for the plant id.
+TEST(DescriptionStack, AnotherBearingStartsANewBaselineAndTheAlertsSaySo) {
+  Stack stack("description_bearing", 199);
+  const std::string lqr = record(stack, "lqr");
+  nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(lqr));
+  sidecar["plant"]["parameters"]["R1"] = 21.0;
+  std::filesystem::copy_file(stack.dir() / "lqr.csv", stack.dir() / "other.csv");
+  std::ofstream(stack.dir() / "other.json") << sidecar.dump();
+  use_replay(stack, lqr);
+  for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
+  std::this_thread::sleep_for(std::chrono::seconds(5));
+  ASSERT_TRUE(diag::TrendStore(stack.store(), diag::OpenMode::read_only).baseline("bearing-1", "R1"));
+  ASSERT_EQ(stack.ambid("source set replay " + (stack.dir() / "other.json").string()).status, 0);
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  const CommandResult alerts = stack.ambid("alerts --wait 1");
+  EXPECT_THAT(alerts.output, HasSubstr("new_bearing")) << alerts.output << stack.log("diagnostics");
+  EXPECT_THAT(alerts.output, HasSubstr("another bearing (R1 17.5 -> 21)")) << alerts.output;
+  EXPECT_THAT(alerts.output, Not(HasSubstr("ERROR"))) << alerts.output;
+}
+
+// `ambid record` writes the description it received: the recording of a replayed pid loop has
+// the pid recording's description, and its windows identify as those of the original.
+TEST(DescriptionStack, RecordKeepsTheDescriptionReplayAndIdentifyGiveTheSameParameters) {
+  Stack stack("description_record", 200);
+  const std::string pid = record(stack, "pid");
+  use_replay(stack, pid);
+  stack.start("plant");
+  const std::string stem = (stack.dir() / "recorded").string();
+  const CommandResult r = stack.ambid("record --out " + stem + " --duration 0.5");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const Experiment original = read_experiment(pid).experiment, recorded = read_experiment(stem).experiment;
+  EXPECT_EQ(convert::describe(recorded, "p").description_id, convert::describe(original, "p").description_id);
+  // The recorded rows are rows of the original (the replay loops over it); same window, same R1.
+  Eigen::Index offset = -1;
+  for (Eigen::Index i = 0; i + recorded.samples() <= original.samples() && offset < 0; ++i)
+    if (original.y.middleRows(i, recorded.samples()) == recorded.y) offset = i;
+  ASSERT_GE(offset, 0) << "the recording is not a window of the replayed file";
+  auto r1 = [](const Experiment& e, Eigen::Index begin) {
+    convert::SampleWindow window(e, 2500);
+    window.add(convert::sample_batch(e, begin, 2500, "p", 0, 0.0));
+    for (const auto& p : daemons::identify_window(window.take(), "p", 0).physical)
+      if (p.name == "R1") return p.value;
+    return std::nan("");
+  };
+  EXPECT_EQ(r1(recorded, 0), r1(original, offset));
+  EXPECT_NEAR(r1(recorded, 0), 17.5, 0.1 * 17.5);
 }
 
 }  // namespace
