@@ -11,7 +11,7 @@
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/fault_signatures.hpp"
 #include "services/convert/alert.hpp"
-#include "services/convert/identified_model.hpp"
+#include "services/convert/estimate_window.hpp"
 #include "services/convert/plant_description.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
