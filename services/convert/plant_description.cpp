@@ -56,8 +56,9 @@ bus::Matrix limits_matrix(const nlohmann::json& limits) {
 }
 
 nlohmann::json limits_json(const bus::Matrix& m, const std::string& field) {
-  if (m.cols != 2) throw Error("plant description: controller." + field + " has " + std::to_string(m.cols) +
-                               " columns, expected 2 ([lo, hi])");
+  if (m.cols != 2)
+    throw Error("plant description: controller." + field + " has " + std::to_string(m.cols) +
+                " columns, expected 2 ([lo, hi])");
   nlohmann::json out = nlohmann::json::array();
   for (std::size_t i = 0; i < m.rows; ++i) {
     const double lo = m.values[2 * i], hi = m.values[2 * i + 1];

@@ -9,7 +9,9 @@
 namespace ambid::daemons {
 namespace {
 
-Eigen::Index samples_of(double seconds, double sample_time) { return Eigen::Index(std::llround(seconds / sample_time)); }
+Eigen::Index samples_of(double seconds, double sample_time) {
+  return Eigen::Index(std::llround(seconds / sample_time));
+}
 
 }  // namespace
 
@@ -31,8 +33,8 @@ std::vector<DescribedWindows::Step> DescribedWindows::describe(const bus::PlantD
   if (!known_.count(d.description_id)) known_order_.push_back(d.description_id);
   known_[d.description_id] = {d, std::move(header)};
   while (known_.size() > settings_.max_descriptions) {
-    const auto evict = std::find_if(known_order_.begin(), known_order_.end(),
-                                    [&](const std::string& id) { return id != current_; });
+    const auto evict =
+        std::find_if(known_order_.begin(), known_order_.end(), [&](const std::string& id) { return id != current_; });
     known_.erase(*evict);
     known_order_.erase(evict);
   }
