@@ -2,6 +2,8 @@
 // description their batches name (described_windows.hpp), against simulated lqr and pid loops.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
@@ -10,6 +12,7 @@
 #include "services/convert/plant_samples.hpp"
 #include "services/daemons/described_windows.hpp"
 #include "services/daemons/description_change.hpp"
+#include "services/daemons/identify_window.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -105,6 +108,36 @@ TEST(DescribedWindows, BatchesWaitForTheirDescriptionAndAnotherDescriptionRestar
   bus::PlantDescription bad = dl;
   bad.description_id = "0000000000000000";
   EXPECT_THROW(w.describe(bad), Error);
+}
+
+// Why the description travels: a window of the pid loop read with the lqr controller (what a
+// daemon with a local scenario file did) is nonsense; read with its own description it is right.
+TEST(DescribedWindows, AWindowReadWithItsOwnControllerIdentifiesTheBearingAnotherDoesNot) {
+  sim::ScenarioOptions o;
+  o.controller = "pid";
+  o.amplitude = 1.0;
+  o.position_noise = 1e-9;
+  o.current_noise = 1e-6;
+  o.duration = 0.5;
+  const Experiment pid = sim::simulate_scenario(o);
+  auto r1 = [&](const Experiment& header) {
+    convert::SampleWindow window(header, 2500, 2500);
+    for (std::uint64_t seq = 0; seq < 10; ++seq)
+      window.add(convert::sample_batch(pid, Eigen::Index(seq) * 500, 500, "b", seq, 0.0));
+    for (const auto& p : identify_window(window.take(), "b", 0).physical)
+      if (p.name == "R1") return p.value;
+    return 0.0;
+  };
+  EXPECT_NEAR(r1(convert::experiment_header(describe(pid, "b"))), 17.5, 0.05 * 17.5);
+  const Experiment lqr = header("lqr");
+  double wrong = 0.0;
+  try {
+    wrong = r1(lqr);
+  } catch (const Error&) {
+    wrong = -1.0;  // or refused outright
+  }
+  RecordProperty("R1_with_the_wrong_controller", std::to_string(wrong));
+  EXPECT_FALSE(std::abs(wrong - 17.5) < 0.25 * 17.5) << "R1 read with the wrong controller: " << wrong;
 }
 
 TEST(DescriptionChange, ControllerKeepsTheBearingParametersMakeAnother) {
