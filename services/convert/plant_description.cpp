@@ -22,6 +22,13 @@ bus::Matrix to_matrix(const Eigen::MatrixXd& m) {
   return out;
 }
 
+// A matrix as received (a writer of another program may not have validated it).
+void check_dimensions(const bus::Matrix& m, const std::string& field) {
+  if (m.values.size() != std::size_t(m.rows) * m.cols)
+    throw Error("plant description: " + field + " holds " + std::to_string(m.values.size()) + " values, not " +
+                std::to_string(m.rows) + " x " + std::to_string(m.cols));
+}
+
 Eigen::MatrixXd from_matrix(const bus::Matrix& m) {
   Eigen::MatrixXd out(m.rows, m.cols);
   for (Eigen::Index i = 0; i < out.rows(); ++i)
@@ -170,6 +177,15 @@ Experiment experiment_header(const bus::PlantDescription& d) {
   if (const std::string id = description_id(d); id != d.description_id)
     throw Error("plant description of '" + d.plant_id + "': id '" + d.description_id +
                 "' does not match its content (hash " + id + ")");
+  const bus::ControllerDescription& k = d.controller;
+  for (const auto& [field, m] : {std::pair{"controller.A", &k.matrices.a},
+                                 {"controller.B", &k.matrices.b},
+                                 {"controller.C", &k.matrices.c},
+                                 {"controller.D", &k.matrices.d},
+                                 {"controller.initial_state", &k.initial_state},
+                                 {"controller.output_limits", &k.output_limits},
+                                 {"controller.state_limits", &k.state_limits}})
+    check_dimensions(*m, field);
   Experiment e;
   e.name = d.plant_id + " description " + d.description_id;
   e.sample_time = d.sample_time;
@@ -179,7 +195,6 @@ Experiment experiment_header(const bus::PlantDescription& d) {
   e.r_names = d.r_names;
   e.operating_point = unnamed(d.operating_point, "operating_point");
   if (d.has_controller) {
-    const bus::ControllerDescription& k = d.controller;
     StateSpaceController c;
     c.kind = k.kind;
     c.sample_time = k.sample_time;

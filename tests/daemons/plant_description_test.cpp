@@ -67,6 +67,15 @@ TEST(PlantDescription, ControllerLimitsTravelAndBadContentIsRefused) {
   wrong.controller.matrices.b.values.resize(wrong.controller.matrices.b.rows * wrong.controller.matrices.b.cols);
   wrong.description_id = convert::description_id(wrong);
   EXPECT_THROW(convert::experiment_header(wrong), Error);
+  bus::PlantDescription unvalidated = d;  // as a writer that skipped validate() might send it
+  unvalidated.controller.matrices.a.values.pop_back();
+  unvalidated.description_id = convert::description_id(unvalidated);
+  EXPECT_THROW(
+      try { convert::experiment_header(unvalidated); } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("controller.A holds"), std::string::npos) << e.what();
+        throw;
+      },
+      Error);
 }
 
 TEST(DescribedWindows, BatchesWaitForTheirDescriptionAndAnotherDescriptionRestartsTheWindow) {
