@@ -2,7 +2,8 @@
 // `ambid daemon diagnostics`, spawned like tests/integration/stack_support.hpp does), the
 // benchmark itself playing the plant: it publishes the plant daemon's batches (500 samples,
 // services/convert/plant_samples.hpp) of records simulated from
-// deploy/config/nominal-bearing.json and coil1-hot.json (seed + record number, as the plant's sim source), on the
+// tests/integration/scenarios/quiet-bearing.json and quiet-coil1-hot.json (1 nm / 1 uA noise, 1 s records; seed +
+// record number, as the plant's sim source), on the
 // loopback profile.
 //   BM_PlantToIdentifier/<vendor>: sustained samples per second plant -> identifier: records
 //     of 1 s published as fast as the identifier keeps up (at most two records ahead of the
@@ -44,7 +45,7 @@ const char* vendor(std::int64_t i) { return i == 0 ? "fastdds" : "cyclone"; }
 
 std::vector<ambid::Experiment> records(const std::string& scenario, int count) {
   const ambid::sim::ScenarioOptions o =
-      ambid::daemons::read_scenario_file(std::string(AMBID_SOURCE_DIR) + "/deploy/config/" + scenario);
+      ambid::daemons::read_scenario_file(std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/" + scenario);
   std::vector<ambid::Experiment> out;
   for (int k = 0; k < count; ++k) {
     ambid::sim::ScenarioOptions ok = o;
@@ -55,11 +56,11 @@ std::vector<ambid::Experiment> records(const std::string& scenario, int count) {
 }
 
 const std::vector<ambid::Experiment>& nominal() {
-  static const auto r = records("nominal-bearing.json", 16);
+  static const auto r = records("quiet-bearing.json", 16);
   return r;
 }
 const std::vector<ambid::Experiment>& hot() {
-  static const auto r = records("coil1-hot.json", 4);
+  static const auto r = records("quiet-coil1-hot.json", 4);
   return r;
 }
 

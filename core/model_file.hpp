@@ -23,6 +23,10 @@ struct Model {
   double sample_time = 0.0;  // of `discrete` (> 0)
   DiscreteSystem discrete;   // deviations from the operating point, SI units
   std::optional<ContinuousSystem> continuous;
+  // Why there is no `continuous` although the method gives one (key `no_continuous`, e.g. d2c
+  // refused a discrete eigenvalue on the negative real axis); empty otherwise. Such a model has
+  // its discrete part only: no physical coordinates, parameters or physical quantities.
+  std::string no_continuous;
   std::map<std::string, double> parameters;   // model-structure parameters (v1..v9)
   std::map<std::string, double> physical;     // derived physical quantities (R1, kw1, ...)
   std::map<std::string, double> uncertainty;  // one sigma, keys of parameters or physical
@@ -33,7 +37,8 @@ struct Model {
 
   // Throws Error naming the first violation: empty plant_model or method, sample_time not
   // positive and finite (or different from discrete.sample_time), inconsistent or non-finite
-  // matrices, non-finite numbers, an uncertainty that is negative or names no parameter.
+  // matrices, non-finite numbers, an uncertainty that is negative or names no parameter,
+  // a `no_continuous` reason beside a continuous system.
   void validate() const;
 };
 

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/linalg.hpp"
+#include "core/no_continuous_equivalent.hpp"
 
 namespace ambid {
 namespace {
@@ -70,7 +71,7 @@ ContinuousSystem d2c_zoh(const DiscreteSystem& sys) {
       msg << "d2c: discrete eigenvalue " << z.real()
           << " lies on the closed negative real axis; no real matrix logarithm exists (the "
              "discrete model has no continuous zero-order-hold equivalent)";
-      throw Error(msg.str());
+      throw NoContinuousEquivalent(msg.str());
     }
   }
   Eigen::MatrixXd M = Eigen::MatrixXd::Identity(n + m, n + m);

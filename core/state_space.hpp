@@ -32,7 +32,8 @@ DiscreteSystem c2d_zoh(const ContinuousSystem& sys, double sample_time);
 
 // Inverse of c2d_zoh by the principal matrix logarithm (seed 000 eq. 8):
 // [A B; 0 0] = logm([Ad Bd; 0 I]) / T. Refuses, naming the eigenvalue, when Ad has an
-// eigenvalue on the closed negative real axis (no real logarithm exists) or at zero.
+// eigenvalue on the closed negative real axis (no real logarithm exists) or at zero: throws
+// NoContinuousEquivalent (no_continuous_equivalent.hpp) then.
 ContinuousSystem d2c_zoh(const DiscreteSystem& sys);
 
 // Simulates the discrete system from state x0. `u` has one row per sample, one column per

@@ -50,6 +50,12 @@ class DiagnosticsEngine {
   // clock of the window times). Stores and returns the alerts.
   std::vector<Alert> check_stale(double now);
 
+  // Marks STALE, at `time`, every parameter of the plant not STALE yet because its estimates
+  // stopped for `reason` (e.g. the identifier's windows keep failing), before any timeout; a
+  // plant without estimates yet gets its monitored parameters (monitored_amb1dof_parameters()).
+  // Each comes back with its next estimate ("estimates resumed"). Stores and returns the alerts.
+  std::vector<Alert> mark_stale(const std::string& plant_id, double time, const std::string& reason);
+
   // Gives a baseline explicitly (stored at once, stamped `time`); detection of the parameter
   // starts again from it.
   void set_baseline(const std::string& plant_id, const std::string& parameter, const Baseline& baseline, double time);

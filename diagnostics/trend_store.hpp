@@ -31,7 +31,7 @@
 
 namespace ambid::diag {
 
-inline constexpr int kSchemaVersion = 1;
+inline constexpr int kSchemaVersion = 2;  // 2: estimate_aggregates
 
 struct StoredEstimate {
   double time = 0.0;
@@ -56,17 +56,38 @@ struct Batch {
   std::vector<BaselineRecord> baselines;  // replace any baseline of the same plant and parameter
 };
 
-// Rows older than now - max_age are removed; of each (plant, parameter) series only the newest
-// max_rows_per_series estimates are kept. Alerts follow max_age only. An empty limit keeps all.
+// Per-window estimates older than now - aggregate_after are folded into one row per plant,
+// parameter, source and bucket of `bucket` seconds (count, sums for the mean and scatter, mean
+// sigma, extremes) and removed. Rows (estimates, aggregates and alerts) older than now - max_age
+// are removed; of each (plant, parameter) series only the newest max_rows_per_series estimates
+// are kept. An empty limit keeps all.
 struct RetentionPolicy {
-  std::optional<double> max_age;  // seconds
+  std::optional<double> aggregate_after;  // seconds
+  double bucket = 3600.0;                 // seconds
+  std::optional<double> max_age;          // seconds
   std::optional<std::int64_t> max_rows_per_series;
-  void validate() const;  // max_age >= 0 and finite, max_rows_per_series >= 0
+  // aggregate_after and max_age >= 0 and finite, bucket > 0 and finite, max_rows_per_series >= 0.
+  void validate() const;
 };
 
 struct RetentionReport {
-  std::int64_t estimates_removed = 0;
+  std::int64_t estimates_aggregated = 0;  // per-window rows folded into buckets
+  std::int64_t estimates_removed = 0;     // per-window rows removed without aggregation
+  std::int64_t aggregates_removed = 0;
   std::int64_t alerts_removed = 0;
+};
+
+// The estimates of one bucket of time [start, start + seconds).
+struct AggregatedEstimate {
+  double start = 0.0, seconds = 0.0;
+  std::string plant_id;
+  Source source = Source::sim;
+  std::string parameter;
+  std::int64_t windows = 0;
+  double mean = 0.0;
+  double spread = 0.0;      // standard deviation of the window values
+  double mean_sigma = 0.0;  // the windows' reported sigma, averaged
+  double min = 0.0, max = 0.0;
 };
 
 enum class OpenMode { read_write, read_only };
@@ -88,6 +109,10 @@ class TrendStore {
                                       double from = -std::numeric_limits<double>::infinity(),
                                       double to = std::numeric_limits<double>::infinity()) const;
   // The newest `limit` alerts, newest first; of one plant when plant_id is given.
+  // Aggregated buckets of one parameter of one plant starting in [from, to], oldest first.
+  std::vector<AggregatedEstimate> aggregates(const std::string& plant_id, const std::string& parameter,
+                                             double from = -std::numeric_limits<double>::infinity(),
+                                             double to = std::numeric_limits<double>::infinity()) const;
   std::vector<Alert> latest_alerts(std::size_t limit, const std::optional<std::string>& plant_id = {}) const;
   std::optional<Baseline> baseline(const std::string& plant_id, const std::string& parameter) const;
   // Removes every baseline of the plant (another bearing under the same plant id: they are

@@ -1,12 +1,11 @@
 #pragma once
 // `ambid frf`: the frequency-domain analysis of one closed-loop experiment, values only (the
 // command line writes files and plots). What it does:
-// - chooses the estimator from the sidecar's "excitation" description: a multisine (or a
-//   periodic PRBS of one channel) is analysed period-exactly at its lines, blocks of
-//   `hadamard` order for the orthogonal pattern; anything else (random, PRBS shorter than two
-//   periods, chirp, no description) by Welch cross spectra; a stepped sine with one reference
-//   and one plant input step by step (exact DFT of each measurement window), with more
-//   inputs by Welch (one direction per frequency cannot separate them);
+// - chooses the estimator from the recorded r (frequency_domain/frf_plan.hpp): a periodic r
+//   (multisine, repeated PRBS, from any generator) is analysed period-exactly at the lines it
+//   excites, the sidecar's "excitation" description serving as a hint only (Hadamard blocks
+//   of `ambid sim`'s multisine); a stepped sine with one reference and one plant input step by
+//   step (exact DFT of each measurement window); anything else by Welch cross spectra;
 // - the plant FRF of every OUTPUT/INPUT pair (indirect, with noise bounds or coherence), the
 //   direct estimate for comparison, the closed-loop responses;
 // - with a recorded controller: the input sensitivity measured from r -> u, its peak per plant
@@ -22,6 +21,7 @@
 
 #include "core/experiment.hpp"
 #include "identifier/frequency_domain/frf_open_loop.hpp"
+#include "identifier/frequency_domain/frf_periodicity.hpp"
 #include "identifier/frequency_domain/rational_fit.hpp"
 #include "identifier/frequency_domain/sensitivity_function.hpp"
 #include "identifier/frf_types.hpp"
@@ -31,6 +31,7 @@ namespace ambid::ident {
 
 struct FrfAnalysisOptions {
   int transient_periods = -1;        // periodic: discarded periods; -1: one if a block remains, else 0
+  PeriodicityOptions periodicity;    // how a periodic r is recognised
   Eigen::Index segment_samples = 0;  // Welch window; 0: largest power of two <= samples / 8 (>= 64)
   double f_min = 0.0, f_max = 0.0;   // lines kept (0: all)
   double confidence = 0.95;          // of the noise bounds
@@ -54,6 +55,20 @@ struct FittedPair {
   RationalFit fit;
 };
 
+// The periodic analysis that ran.
+struct PeriodicExcitation {
+  std::string source;     // "r": detected in the record; "sidecar": its description, confirmed by r
+  std::string estimator;  // "exact lines" | "local polynomial" (Hadamard blocks) | "local rational" (zippered)
+  Eigen::Index period_samples = 0;
+  double period_s = 0.0;
+  Eigen::Index first_sample = 0;       // where the first whole period starts
+  Eigen::Index whole_periods = 0;      // recorded
+  Eigen::Index transient_periods = 0;  // discarded at the start
+  Eigen::Index periods_per_block = 1;
+  Eigen::Index periods_used = 0;
+  std::vector<std::vector<Eigen::Index>> lines;  // excited DFT lines of one period, per reference
+};
+
 struct FrfReport {
   std::string method;      // "periodic" | "stepped_sine" | "welch"
   std::string excitation;  // the sidecar's excitation kind, or "unknown"
@@ -66,7 +81,9 @@ struct FrfReport {
   std::vector<SensitivityPeak> sensitivity_peaks;  // one per plant input, then "sigma_max"
   std::optional<ControllerCheck> controller_check;
   std::vector<FittedPair> fits;
+  std::optional<PeriodicExcitation> periodic;  // method "periodic": what was detected and used
   std::vector<std::string> notes;
+  std::vector<std::string> warnings;  // e.g. a sidecar description that the recorded r contradicts
 };
 
 // Throws Error for an invalid experiment and InsufficientData when it has no excitation or the

@@ -6,9 +6,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/no_continuous_equivalent.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_deadbeat.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
+#include "identifier/families/amb1dof_realization.hpp"
+#include "identifier/plant_families.hpp"
 #include "identifier/time_domain/closed_loop_id.hpp"
 #include "identifier/time_domain/closed_loop_validation.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
@@ -22,12 +25,11 @@ namespace {
 
 using Index = Eigen::Index;
 const std::string kWho = "identify";
-const std::vector<std::string> kAmbY = {"x", "i1", "i2"}, kAmbU = {"u1", "u2"};
 
-bool is_amb1dof(const Experiment& e) { return e.plant.model == "amb1dof_voltage"; }
-
+// The structure's signals for a known family, else every signal in the experiment's order.
 LoopSignals signals_of(const Experiment& e) {
-  return is_amb1dof(e) ? loop_signals(e, kAmbY, kAmbU, kWho) : loop_signals(e, kWho);
+  const IdentificationFamily* family = find_identification_family(e.plant.model);
+  return family ? loop_signals(e, family->y_names, family->u_names, kWho) : loop_signals(e, kWho);
 }
 
 // The experiment has one: require() checked it for the methods that need it.
@@ -37,22 +39,8 @@ KnownController controller_of(const Experiment& e, const LoopSignals& s) {
 
 Index model_order(const Experiment& e, const IdentifyOptions& o) {
   if (o.order < 0) throw Error(kWho + ": order must be >= 0, got " + std::to_string(o.order));
-  return o.order > 0 ? o.order : (is_amb1dof(e) ? 4 : 0);
-}
-
-// v1..v9 and the physical quantities of a 4-state amb1dof realisation with outputs [x, i1, i2].
-void add_amb1dof_structure(const Experiment& e, const DiscreteSystem& realization, Model& model) {
-  const Amb1dofPhysicalModel phys = amb1dof_physical_model(realization);
-  model.discrete = phys.discrete;
-  model.continuous = phys.continuous;
-  const Amb1dofNominal nominal = amb1dof_nominal(e, kWho);
-  const Eigen::Matrix<double, 9, 1> v = amb1dof_structure_vector(phys.continuous);
-  const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(nominal.L1, nominal.L2, nominal.m);
-  for (Index i = 0; i < 9; ++i) {
-    model.parameters[amb1dof_structure_names()[std::size_t(i)]] = v(i);
-    model.physical[amb1dof_physical_names()[std::size_t(i)]] = v(i) * scale(i);
-  }
-  model.extra.json()["structure_deviation"] = amb1dof_structure_deviation(phys.continuous);
+  const IdentificationFamily* family = find_identification_family(e.plant.model);
+  return o.order > 0 ? o.order : (family ? family->order : 0);
 }
 
 // The families check is identify_experiment's (the registry); the order is the method's own.
@@ -133,14 +121,15 @@ Eigen::Matrix<double, 9, 1> structure_vector(const std::map<std::string, double>
 }
 
 // Segment jackknife of the parameters and physical quantities of an ARX/ERA method.
-void add_jackknife_uncertainty(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
+void add_jackknife_uncertainty(const IdentificationFamily& family, Realize realize, const Experiment& e,
+                               const IdentifyOptions& o, Model& model) {
   std::vector<std::map<std::string, double>> estimates;
   try {
     for (Index i = 0; i < o.jackknife_segments; ++i) {
       const LeaveOneSegmentOut cut = experiment_without_segment(e, i, o.jackknife_segments);
       const Breaks breaks = cut.joint > 0 ? Breaks{cut.joint} : Breaks{};
       Model part;
-      add_amb1dof_structure(e, realize(cut.experiment, o, breaks), part);
+      family.add_structure(e, realize(cut.experiment, o, breaks), part);
       part.parameters.insert(part.physical.begin(), part.physical.end());
       estimates.push_back(part.parameters);
     }
@@ -155,9 +144,18 @@ void add_jackknife_uncertainty(Realize realize, const Experiment& e, const Ident
 void fit_realization(Realize realize, const Experiment& e, const IdentifyOptions& o, Model& model) {
   const DiscreteSystem realization = realize(e, o, {});
   model.discrete = realization;
-  if (is_amb1dof(e) && realization.states() == 4) {
-    add_amb1dof_structure(e, realization, model);
-    if (o.jackknife_segments > 0) add_jackknife_uncertainty(realize, e, o, model);
+  const IdentificationFamily* family = find_identification_family(e.plant.model);
+  if (family && family->add_structure && realization.states() == family->order) {
+    try {
+      family->add_structure(e, realization, model);
+    } catch (const NoContinuousEquivalent& error) {
+      // The physical coordinates need Ac = logm(A)/T; the discrete model stays valid as it is.
+      model.no_continuous = error.what();
+      add_warning(model, "no continuous-time model (" + std::string(error.what()) +
+                             "): the discrete model is kept in the realisation's coordinates, without parameters");
+      return;
+    }
+    if (o.jackknife_segments > 0) add_jackknife_uncertainty(*family, realize, e, o, model);
   } else {
     add_warning(model, "model in the realisation's coordinates (no physical structure for this plant or order)");
   }
@@ -181,12 +179,15 @@ void validate_on(const Experiment& validation, Model& model) {
 
 // What method_registry() requires of the experiment, in this order.
 void require(const IdentificationMethod& method, const Experiment& e) {
-  const auto& families = method.families;
-  if (!families.empty() && std::find(families.begin(), families.end(), e.plant.model) == families.end()) {
+  const std::vector<std::string> families = families_offering(method.name);
+  if (method.family_bound && std::find(families.begin(), families.end(), e.plant.model) == families.end()) {
     std::string list;
     for (const auto& f : families) list += (list.empty() ? "'" : "', '") + f;
     throw Error(kWho + ": method '" + method.name + "' is defined for plant model " + list + "' only, got '" +
-                e.plant.model + "'");
+                e.plant.model + "'" +
+                (find_identification_family(e.plant.model)
+                     ? ""
+                     : " (known plant models: " + identification_family_names() + ")"));
   }
   if (method.needs_r && !e.has_excitation())
     throw Error(kWho + ": method '" + method.name +
@@ -218,6 +219,11 @@ void fit_closed_loop(const Experiment& e, const IdentifyOptions& o, Model& model
 
 void fit_projection(const Experiment& e, const IdentifyOptions& o, Model& model) {
   fit_realization(realize_projection, e, o, model);
+}
+
+// The family's own (require() checked that the family offers greybox).
+void fit_greybox(const Experiment& e, const IdentifyOptions& o, Model& model) {
+  find_identification_family(e.plant.model)->greybox(e, o, model);
 }
 
 // Starts from `closed-loop`, `deadbeat-iv` and `deadbeat` (those that succeed), then the
@@ -277,6 +283,10 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
 }
 
 }  // namespace detail
+
+void require_method_inputs(const Experiment& e, const std::string& method) {
+  require(identification_method(method, kWho), e);
+}
 
 Experiment experiment_segment(const Experiment& e, Index begin, Index end) {
   if (begin < 0 || end > e.samples() || end - begin < 2)

@@ -13,6 +13,10 @@
 // The record is split: the first (1 - validation_fraction) is fitted, the rest only validates
 // (fit.nrmse, closed-loop simulation with the recorded controller, closed_loop_validation.hpp).
 // Nothing here stabilises an identified model: an unstable plant comes out unstable.
+// When an ERA realisation has no continuous-time equivalent (d2c_zoh refuses a discrete
+// eigenvalue on the closed negative real axis, as noise can put one there), the model keeps
+// that discrete realisation in its own coordinates, with Model::no_continuous saying why and
+// no parameters or physical quantities; no Error is thrown for it.
 #include <string>
 #include <vector>
 
@@ -45,6 +49,12 @@ inline constexpr Eigen::Index kDefaultInstrumentLags = 60;
 // exciting, rank deficient). Warnings (e.g. no validation possible) go to
 // Model::extra["warnings"] (an array of strings).
 Model identify_experiment(const Experiment& experiment, const IdentifyOptions& options);
+
+// Throws Error, as identify_experiment does, when the method cannot identify the experiment
+// at all: an unknown method, a plant model it is not defined for, no excitation or no
+// controller where it needs one. A caller that identifies many windows of one record refuses
+// the record once with it; what fails later is a failure of that window.
+void require_method_inputs(const Experiment& experiment, const std::string& method);
 
 // Samples [begin, end) of `experiment` as an experiment of its own; the controller's
 // initial_state becomes its state at `begin` (the controller replayed on the record).

@@ -1,6 +1,6 @@
 #include "identifier/identify_window.hpp"
 
-#include "core/error.hpp"
+#include "core/no_continuous_equivalent.hpp"
 
 namespace ambid::ident {
 
@@ -34,9 +34,23 @@ std::vector<Estimate> with_uncertainty(const std::map<std::string, double>& valu
 WindowIdentification identify_window(const Experiment& window, const IdentifyOptions& options) {
   WindowIdentification out;
   out.model = identify_experiment(window, options);
+  if (!out.model.no_continuous.empty())
+    throw NoContinuousEquivalent("no continuous-time model, so no physical parameters: " + out.model.no_continuous);
   out.parameters = with_uncertainty(out.model.parameters, out.model.uncertainty, "identify window");
   out.physical = with_uncertainty(out.model.physical, out.model.uncertainty, "identify window");
   return out;
+}
+
+const std::vector<std::string>& window_failure_reasons() {
+  static const std::vector<std::string> reasons{"no_continuous_model", "insufficient_data", "error"};
+  return reasons;
+}
+
+WindowFailure window_failure(const Error& error) {
+  const std::vector<std::string>& r = window_failure_reasons();
+  if (dynamic_cast<const NoContinuousEquivalent*>(&error)) return {r[0], error.what()};
+  if (dynamic_cast<const InsufficientData*>(&error)) return {r[1], error.what()};
+  return {r[2], error.what()};
 }
 
 }  // namespace ambid::ident

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/experiment.hpp"
 #include "core/model_file.hpp"
 #include "identifier/identify_experiment.hpp"
@@ -45,7 +46,19 @@ std::vector<Estimate> with_uncertainty(const std::map<std::string, double>& valu
                                        const std::map<std::string, double>& sigmas, const std::string& who);
 
 // identify_experiment of the window with `options` (window_identify_options). Throws what it
-// throws (InsufficientData for unexciting data).
+// throws (InsufficientData for unexciting data), and NoContinuousEquivalent for a model with
+// its discrete part only (Model::no_continuous): a window without physical parameters.
 WindowIdentification identify_window(const Experiment& window, const IdentifyOptions& options);
+
+// Why a window gave no estimates: `reason` a short fixed name (a metrics label, a key of
+// diagnosis.json), `message` the error's words.
+struct WindowFailure {
+  std::string reason;
+  std::string message;
+};
+// The reasons, in this order: "no_continuous_model" (NoContinuousEquivalent), "insufficient_data"
+// (any other InsufficientData: too short, not exciting, rank deficient), "error" (any other Error).
+const std::vector<std::string>& window_failure_reasons();
+WindowFailure window_failure(const Error& error);
 
 }  // namespace ambid::ident

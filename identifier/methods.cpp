@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.hpp"
+#include "identifier/plant_families.hpp"
 #include "identifier/time_domain/method_fits.hpp"
 
 namespace ambid::ident {
@@ -29,37 +30,21 @@ std::string padded(const std::string& text, std::size_t width) {
 
 const std::vector<IdentificationMethod>& method_registry() {
   static const std::vector<IdentificationMethod> methods = {
-      {"deadbeat",
-       true,
-       false,
-       {"amb1dof_voltage"},
-       "seed 000 physical realisation; sigmas from its least-squares covariance",
+      {"deadbeat", true, false, true, "seed 000 physical realisation; sigmas from its least-squares covariance",
        detail::fit_deadbeat},
-      {"deadbeat-iv",
-       true,
-       true,
-       {"amb1dof_voltage"},
-       "deadbeat by instrumental variables (the delayed r): consistent under sensor noise",
-       detail::fit_deadbeat_iv},
-      {"okid", false, false, {}, "ARX of y on the plant input u, OKID Markov parameters, ERA", detail::fit_okid},
-      {"closed-loop",
-       true,
-       true,
-       {},
-       "known-controller identification from r to y (Lee ch. 2)",
+      {"deadbeat-iv", true, true, true,
+       "deadbeat by instrumental variables (the delayed r): consistent under sensor noise", detail::fit_deadbeat_iv},
+      {"okid", false, false, false, "ARX of y on the plant input u, OKID Markov parameters, ERA", detail::fit_okid},
+      {"closed-loop", true, true, false, "known-controller identification from r to y (Lee ch. 2)",
        detail::fit_closed_loop},
-      {"projection",
-       false,
-       true,
-       {},
-       "projection filters with unknown feedback uf = u - r (Lee ch. 4)",
+      {"projection", false, true, false, "projection filters with unknown feedback uf = u - r (Lee ch. 4)",
        detail::fit_projection},
-      {"pem",
-       true,
-       true,
-       {"amb1dof_voltage"},
+      {"pem", true, true, true,
        "prediction error (Ceres) from the best of closed-loop, deadbeat-iv, deadbeat; noise-consistent",
        detail::fit_pem},
+      {"greybox", false, false, true,
+       "physical parameters on the family's nonlinear model from x, i, u (no controller or r needed)",
+       detail::fit_greybox},
   };
   return methods;
 }
@@ -87,7 +72,7 @@ std::string method_table() {
   const std::vector<std::string> header = {"method", "plant", "needs", "what it does"};
   std::vector<std::vector<std::string>> rows = {header};
   for (const IdentificationMethod& m : method_registry())
-    rows.push_back({m.name, m.families.empty() ? "any" : join(m.families, ", "), needs(m), m.description});
+    rows.push_back({m.name, m.family_bound ? join(families_offering(m.name), ", ") : "any", needs(m), m.description});
   std::vector<std::size_t> width(header.size() - 1, 0);
   for (const auto& row : rows)
     for (std::size_t c = 0; c < width.size(); ++c) width[c] = std::max(width[c], row[c].size());

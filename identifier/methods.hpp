@@ -18,10 +18,11 @@ struct IdentifyOptions;
 
 struct IdentificationMethod {
   std::string name;
-  bool needs_controller = false;      // the controller that closed the loop (Experiment::controller)
-  bool needs_r = false;               // the recorded excitation r (signals.r)
-  std::vector<std::string> families;  // the plant models it is defined for; empty: any
-  std::string description;            // one line
+  bool needs_controller = false;  // the controller that closed the loop (Experiment::controller)
+  bool needs_r = false;           // the recorded excitation r (signals.r)
+  // Defined only for the plant families that offer it (plant_families.hpp); else any model.
+  bool family_bound = false;
+  std::string description;  // one line
   // Fits `fit` (the part of the record to fit) into `model`. identify_experiment has checked
   // the requirements above and resolved the default ARX order and Markov count in `options`.
   void (*fit)(const Experiment& fit, const IdentifyOptions& options, Model& model) = nullptr;

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/experiment.hpp"
 #include "plant_sim/closed_loop.hpp"
@@ -30,6 +31,12 @@ struct ScenarioOptions {
   double current_noise = 0.0;                     // sensor noise std of i1, i2 (A)
   double force_noise = 0.0;                       // process noise std of the force Fz (N)
   double input_limit = 0.0;                       // |u| limit of the amplifiers (V); 0: none
+  // Families that run a rig's own loop (maglev1coil_voltage, maglev_loop.hpp): the board's
+  // settings by name (maglev_rig.hpp; unset ones keep their defaults), the reference levels
+  // (m, cycled; empty: the loop's default) and how long each is held (s).
+  std::map<std::string, double> rig;
+  std::vector<double> levels;
+  double step_period = 2.0;
   std::uint64_t seed = 1;
 };
 
@@ -39,11 +46,14 @@ struct Scenario {
   ClosedLoopOptions options;
 };
 
-// Throws Error naming the bad option (unknown plant, controller, excitation or parameter name,
-// non-positive duration or sample time, negative noise or amplitude).
+// The scenario of a family that runs in the generic closed-loop runner (families.hpp; today
+// amb1dof_voltage). Throws Error naming the bad option (unknown plant, controller, excitation
+// or parameter name, non-positive duration or sample time, negative noise or amplitude), and
+// for a family that runs its own loop instead.
 Scenario build_scenario(const ScenarioOptions& options);
 
-// build_scenario + run_closed_loop.
+// The simulation of the family of options.plant (families.hpp): build_scenario +
+// run_closed_loop for amb1dof_voltage, the rig loop for maglev1coil_voltage.
 Experiment simulate_scenario(const ScenarioOptions& options, ClosedLoopStatistics* statistics = nullptr);
 
 }  // namespace ambid::sim

@@ -14,8 +14,9 @@
 #include "core/json_text.hpp"
 
 // Required keys: format, plant_model, method, sample_time, discrete (A, B, C, D). Optional,
-// empty when absent: continuous, parameters, physical, uncertainty, fit (and fit.nrmse): a
-// method may give no physical parameters or no validation segment.
+// empty when absent: continuous, no_continuous (why continuous is absent), parameters,
+// physical, uncertainty, fit (and fit.nrmse): a method may give no physical parameters or no
+// validation segment.
 
 namespace ambid {
 namespace {
@@ -23,8 +24,9 @@ namespace {
 using nlohmann::json;
 using namespace json_fields;
 
-const std::set<std::string> kTopKeys{"format",     "plant_model", "method",   "sample_time", "discrete",
-                                     "continuous", "parameters",  "physical", "uncertainty", "fit"};
+const std::set<std::string> kTopKeys{"format",      "plant_model", "method",       "sample_time",
+                                     "discrete",    "continuous",  "parameters",   "physical",
+                                     "uncertainty", "fit",         "no_continuous"};
 
 // The defined keys inside the objects whose unknown keys are kept under the same name in extra.
 const std::map<std::string, std::set<std::string>> kNestedKeys{
@@ -90,6 +92,8 @@ void Model::validate() const {
                 " differs from `sample_time` " + number_text(sample_time));
   validate_system(discrete, "discrete");
   if (continuous) validate_system(*continuous, "continuous");
+  if (continuous && !no_continuous.empty())
+    throw Error("key `no_continuous` says why there is no continuous system, but the model has one");
   validate_numbers(parameters, "parameters");
   validate_numbers(physical, "physical");
   validate_numbers(uncertainty, "uncertainty");
@@ -124,6 +128,7 @@ json model_json(const Model& m) {
   j["sample_time"] = m.sample_time;
   j["discrete"] = system_json(m.discrete);
   if (m.continuous) j["continuous"] = system_json(*m.continuous);
+  if (!m.no_continuous.empty()) j["no_continuous"] = m.no_continuous;
   j["parameters"] = m.parameters;
   j["physical"] = m.physical;
   j["uncertainty"] = m.uncertainty;
@@ -146,6 +151,7 @@ Model parse_model(const json& j) {
   m.discrete.sample_time = m.sample_time;
   if (const auto it = j.find("continuous"); it != j.end())
     m.continuous = parse_system<ContinuousSystem>(*it, "continuous", m.extra.json());
+  if (const auto it = j.find("no_continuous"); it != j.end()) m.no_continuous = as_string(*it, "no_continuous");
   if (const auto it = j.find("parameters"); it != j.end()) m.parameters = parse_numbers(*it, "parameters");
   if (const auto it = j.find("physical"); it != j.end()) m.physical = parse_numbers(*it, "physical");
   if (const auto it = j.find("uncertainty"); it != j.end()) m.uncertainty = parse_numbers(*it, "uncertainty");

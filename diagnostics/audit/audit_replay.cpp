@@ -1,14 +1,14 @@
 #include "diagnostics/audit/audit_replay.hpp"
 
 #include "core/error.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/closed_loop.hpp"
 
 namespace ambid::diag {
 
 void require_auditable(const Experiment& measured) {
-  if (measured.plant.model != "amb1dof_voltage")
-    throw Error("audit: plant model '" + measured.plant.model + "' has no effect catalogue (known: amb1dof_voltage)");
+  require_diagnostics_piece(measured.plant.model, DiagnosticsPiece::effect_catalogue, "audit");
   if (!measured.controller) throw Error("audit: the experiment has no controller, so the loop cannot be replayed");
   if (!measured.has_excitation())
     throw InsufficientData("audit: the experiment records no excitation r, so the loop cannot be replayed");

@@ -72,4 +72,8 @@ std::string stale_message(std::string_view subject, double silent_for, double ti
   return std::string(subject) + ": no estimate for " + seconds(silent_for) + " s (timeout " + seconds(timeout) + " s)";
 }
 
+std::string stale_message(std::string_view subject, std::string_view reason) {
+  return std::string(subject) + ": no estimate: " + std::string(reason);
+}
+
 }  // namespace ambid::diag

@@ -37,5 +37,7 @@ std::string ok_message(std::string_view subject, const SeriesStatus& status, Lev
                        std::size_t learning_windows);
 // "coil 1 resistance: no estimate for 45 s (timeout 30 s)"
 std::string stale_message(std::string_view subject, double silent_for, double timeout);
+// "coil 1 resistance: no estimate: REASON"
+std::string stale_message(std::string_view subject, std::string_view reason);
 
 }  // namespace ambid::diag

@@ -82,6 +82,26 @@ std::vector<Alert> DiagnosticsEngine::check_stale(double now) {
   return batch.alerts;
 }
 
+std::vector<Alert> DiagnosticsEngine::mark_stale(const std::string& plant_id, double time, const std::string& reason) {
+  if (!std::isfinite(time)) throw Error("diagnostics: staleness time is not finite");
+  SeriesMap next = series_;
+  const bool seen = std::any_of(next.begin(), next.end(), [&](const auto& s) { return s.first.first == plant_id; });
+  if (!seen)
+    for (const std::string& parameter : monitored_amb1dof_parameters()) series(next, plant_id, parameter);
+  Batch batch;
+  for (auto& [key, s] : next) {
+    if (key.first != plant_id || s.level == Level::stale) continue;
+    s.level = Level::stale;
+    s.fault = std::string(s.role.fault);
+    s.channel = s.role.channel;
+    batch.alerts.push_back(make_alert(time, plant_id, key.second, Level::stale, s.fault, s.channel, s.last_value,
+                                      s.monitor.baseline(), stale_message(s.role.subject, reason)));
+  }
+  if (!batch.alerts.empty()) store_.write(batch);
+  series_ = std::move(next);
+  return batch.alerts;
+}
+
 void DiagnosticsEngine::mark_stale(SeriesMap& map, const std::optional<std::string>& plant_id, double now,
                                    std::vector<Alert>& alerts) const {
   for (auto& [key, s] : map) {

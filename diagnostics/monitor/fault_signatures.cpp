@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/fault_isolation.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
@@ -63,8 +64,7 @@ class SensedPlant : public sim::Plant {
 };
 
 sim::Amb1dofParameters nominal_of(const Experiment& header) {
-  if (header.plant.model != "amb1dof_voltage")
-    throw Error("fault signatures: plant model '" + header.plant.model + "' has none (known: amb1dof_voltage)");
+  require_diagnostics_piece(header.plant.model, DiagnosticsPiece::fault_signatures, "fault signatures");
   if (!header.controller) throw Error("fault signatures: the experiment records no controller to close the loop with");
   return sim::Amb1dofParameters::from_map(header.plant.parameters);
 }

@@ -1,5 +1,6 @@
 #include "diagnostics/trend_store.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <string_view>
@@ -49,6 +50,22 @@ CREATE TABLE baselines (
   origin         TEXT NOT NULL CHECK (origin IN ('learned', 'given')),
   time           REAL NOT NULL,
   PRIMARY KEY (plant_id, parameter)
+);
+)sql",
+    R"sql(
+CREATE TABLE estimate_aggregates (
+  plant_id         TEXT NOT NULL,
+  parameter        TEXT NOT NULL,
+  source           TEXT NOT NULL CHECK (source IN ('sim', 'replay', 'rig')),
+  bucket_start     REAL NOT NULL,
+  bucket_seconds   REAL NOT NULL CHECK (bucket_seconds > 0),
+  windows          INTEGER NOT NULL CHECK (windows > 0),
+  value_sum        REAL NOT NULL,
+  value_square_sum REAL NOT NULL,
+  sigma_sum        REAL NOT NULL,
+  value_min        REAL NOT NULL,
+  value_max        REAL NOT NULL,
+  PRIMARY KEY (plant_id, parameter, source, bucket_start)
 );
 )sql",
 };
@@ -135,6 +152,10 @@ std::string select_alerts(std::string_view where) {
 void RetentionPolicy::validate() const {
   if (max_age && (!(*max_age >= 0.0) || !std::isfinite(*max_age)))
     throw Error("retention: max_age must be non-negative and finite, got " + std::to_string(*max_age));
+  if (aggregate_after && (!(*aggregate_after >= 0.0) || !std::isfinite(*aggregate_after)))
+    throw Error("retention: aggregate_after must be non-negative and finite, got " + std::to_string(*aggregate_after));
+  if (!(bucket > 0.0) || !std::isfinite(bucket))
+    throw Error("retention: bucket must be positive and finite, got " + std::to_string(bucket));
   if (max_rows_per_series && *max_rows_per_series < 0)
     throw Error("retention: max_rows_per_series must be non-negative, got " + std::to_string(*max_rows_per_series));
 }
@@ -167,6 +188,29 @@ struct TrendStore::Impl {
       "read baseline"};
   sqlite::Statement delete_baselines{db, "DELETE FROM baselines WHERE plant_id = ?", "remove baselines"};
   sqlite::Statement delete_old_estimates{db, "DELETE FROM estimates WHERE time < ?", "remove old estimates"};
+  // Buckets are whole multiples of the bucket length; a bucket already stored (a run of
+  // retention that cut through it) is merged, not replaced.
+  sqlite::Statement fold_estimates{
+      db,
+      "INSERT INTO estimate_aggregates (plant_id, parameter, source, bucket_start, bucket_seconds, windows, "
+      "value_sum, value_square_sum, sigma_sum, value_min, value_max) "
+      "SELECT plant_id, parameter, source, bucket * ?1, ?1, COUNT(*), SUM(value), SUM(value * value), SUM(sigma), "
+      "MIN(value), MAX(value) FROM (SELECT *, CAST(time / ?1 AS INTEGER) - (time < 0 AND time / ?1 <> "
+      "CAST(time / ?1 AS INTEGER)) AS bucket FROM estimates WHERE time < ?2) "
+      "GROUP BY plant_id, parameter, source, bucket "
+      "ON CONFLICT (plant_id, parameter, source, bucket_start) DO UPDATE SET windows = windows + excluded.windows, "
+      "value_sum = value_sum + excluded.value_sum, value_square_sum = value_square_sum + excluded.value_square_sum, "
+      "sigma_sum = sigma_sum + excluded.sigma_sum, value_min = MIN(value_min, excluded.value_min), "
+      "value_max = MAX(value_max, excluded.value_max)",
+      "aggregate old estimates"};
+  sqlite::Statement delete_old_aggregates{
+      db, "DELETE FROM estimate_aggregates WHERE bucket_start + bucket_seconds <= ?", "remove old aggregates"};
+  sqlite::Statement select_aggregates{
+      db,
+      "SELECT bucket_start, bucket_seconds, plant_id, source, parameter, windows, value_sum, value_square_sum, "
+      "sigma_sum, value_min, value_max FROM estimate_aggregates WHERE plant_id = ? AND parameter = ? AND "
+      "bucket_start >= ? AND bucket_start <= ? ORDER BY bucket_start, source",
+      "read aggregates"};
   sqlite::Statement delete_old_alerts{db, "DELETE FROM alerts WHERE time < ?", "remove old alerts"};
   sqlite::Statement delete_excess_estimates{
       db,
@@ -217,6 +261,30 @@ std::vector<StoredEstimate> TrendStore::history(const std::string& plant_id, con
   return rows;
 }
 
+std::vector<AggregatedEstimate> TrendStore::aggregates(const std::string& plant_id, const std::string& parameter,
+                                                       double from, double to) const {
+  auto run = impl_->select_aggregates.run();
+  run.bind(1, plant_id).bind(2, parameter).bind(3, from).bind(4, to);
+  std::vector<AggregatedEstimate> rows;
+  while (run.step()) {
+    AggregatedEstimate a;
+    a.start = run.column_double(0);
+    a.seconds = run.column_double(1);
+    a.plant_id = run.column_text(2);
+    a.source = parse_source(run.column_text(3));
+    a.parameter = run.column_text(4);
+    a.windows = run.column_int(5);
+    const double n = double(a.windows);
+    a.mean = run.column_double(6) / n;
+    a.spread = std::sqrt(std::max(0.0, run.column_double(7) / n - a.mean * a.mean) * n / std::max(1.0, n - 1.0));
+    a.mean_sigma = run.column_double(8) / n;
+    a.min = run.column_double(9);
+    a.max = run.column_double(10);
+    rows.push_back(std::move(a));
+  }
+  return rows;
+}
+
 std::vector<Alert> TrendStore::latest_alerts(std::size_t limit, const std::optional<std::string>& plant_id) const {
   sqlite::Statement& statement = plant_id ? impl_->select_alerts_plant : impl_->select_alerts_all;
   auto run = statement.run();
@@ -257,8 +325,17 @@ RetentionReport TrendStore::apply_retention(const RetentionPolicy& policy, doubl
     const double oldest = now - *policy.max_age;
     impl_->delete_old_estimates.run().bind(1, oldest).execute();
     report.estimates_removed += impl_->db.changes();
+    impl_->delete_old_aggregates.run().bind(1, oldest).execute();
+    report.aggregates_removed += impl_->db.changes();
     impl_->delete_old_alerts.run().bind(1, oldest).execute();
     report.alerts_removed += impl_->db.changes();
+  }
+  if (policy.aggregate_after) {
+    // Whole buckets only: the cut is rounded down to a bucket boundary.
+    const double cut = std::floor((now - *policy.aggregate_after) / policy.bucket) * policy.bucket;
+    impl_->fold_estimates.run().bind(1, policy.bucket).bind(2, cut).execute();
+    impl_->delete_old_estimates.run().bind(1, cut).execute();
+    report.estimates_aggregated += impl_->db.changes();
   }
   if (policy.max_rows_per_series) {
     impl_->delete_excess_estimates.run().bind(1, *policy.max_rows_per_series).execute();

@@ -4,142 +4,13 @@
 #include <cmath>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "core/error.hpp"
-#include "identifier/frequency_domain/frf_periodic.hpp"
-#include "identifier/frequency_domain/frf_stepped_sine.hpp"
+#include "identifier/frequency_domain/frf_plan.hpp"
 #include "identifier/frequency_domain/rational_fit_order.hpp"
 #include "identifier/frf_welch.hpp"
 
 namespace ambid::ident {
 namespace {
-
-const nlohmann::json* excitation_description(const Experiment& e) {
-  const nlohmann::json& extra = e.extra.json();
-  if (!extra.is_object()) return nullptr;
-  const auto it = extra.find("excitation");
-  if (it == extra.end() || !it->is_object()) return nullptr;
-  return &*it;
-}
-
-std::string text(const nlohmann::json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
-
-double number(const nlohmann::json& j, const char* key, double fallback) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_number() ? it->get<double>() : fallback;
-}
-
-bool in_band(double f, const FrfAnalysisOptions& o) { return f >= o.f_min && (o.f_max <= 0.0 || f <= o.f_max); }
-
-// The periodic estimator's options from a multisine / periodic PRBS description, or nullopt
-// (with a note) when the description does not allow a period-exact analysis.
-std::optional<PeriodicFrfOptions> periodic_options(const Experiment& e, const nlohmann::json& d,
-                                                   const FrfAnalysisOptions& o, Eigen::Index* periods,
-                                                   std::vector<std::string>& notes) {
-  const std::string kind = text(d, "kind");
-  const double N_value = number(d, "period_samples", 0.0);
-  const auto N = static_cast<Eigen::Index>(std::llround(N_value));
-  const double described_periods = number(d, "periods", 0.0);
-  const auto nr = static_cast<Eigen::Index>(e.r_names.size());
-  if (N < 4 || N_value != static_cast<double>(N)) {
-    notes.push_back("excitation: no usable period_samples in the description; Welch analysis instead");
-    return std::nullopt;
-  }
-  *periods = std::min<Eigen::Index>(e.samples() / N, static_cast<Eigen::Index>(std::floor(described_periods + 1e-9)));
-  PeriodicFrfOptions p;
-  p.sample_time = e.sample_time;
-  p.period_samples = N;
-  const double df = 1.0 / (static_cast<double>(N) * e.sample_time);
-  if (kind == "multisine") {
-    const auto it = d.find("lines");
-    if (it == d.end() || !it->is_array()) {
-      notes.push_back("excitation: the multisine description has no lines; Welch analysis instead");
-      return std::nullopt;
-    }
-    for (const auto& k : *it)
-      if (k.is_number_integer() && in_band(static_cast<double>(k.get<Eigen::Index>()) * df, o))
-        p.lines.push_back(k.get<Eigen::Index>());
-    std::sort(p.lines.begin(), p.lines.end());
-    p.lines.erase(std::unique(p.lines.begin(), p.lines.end()), p.lines.end());
-    const std::string pattern = text(d, "channel_pattern");
-    if (pattern == "hadamard") {
-      const auto h = d.find("hadamard");
-      p.periods_per_block = h != d.end() && h->is_array() ? static_cast<Eigen::Index>(h->size()) : 0;
-      if (p.periods_per_block < nr) {
-        notes.push_back("excitation: the hadamard description is missing or too small; Welch analysis instead");
-        return std::nullopt;
-      }
-    } else if (nr > 1) {
-      notes.push_back(
-          "excitation: the same multisine on every channel cannot separate the plant inputs; Welch analysis instead");
-      return std::nullopt;
-    }
-  } else if (kind == "prbs") {
-    if (nr != 1 || *periods < 2) {
-      notes.push_back(
-          nr != 1 ? "excitation: shifted PRBS channels are not separable period by period; Welch analysis instead"
-                  : "excitation: fewer than two whole PRBS periods; Welch analysis instead");
-      return std::nullopt;
-    }
-    for (Eigen::Index k = 1; 2 * k < N; ++k)
-      if (in_band(static_cast<double>(k) * df, o)) p.lines.push_back(k);
-  } else {
-    return std::nullopt;
-  }
-  if (p.lines.empty()) {
-    notes.push_back("excitation: no excited line in the requested band; Welch analysis instead");
-    return std::nullopt;
-  }
-  if (o.transient_periods >= 0) {
-    p.transient_periods = o.transient_periods;
-  } else {
-    p.transient_periods = *periods - 1 >= p.periods_per_block ? 1 : 0;
-    if (p.transient_periods == 0)
-      notes.push_back("periodic analysis: too few periods to discard one as transient; the first period is used");
-  }
-  return p;
-}
-
-// The stepped-sine estimator's options from the description, or nullopt (with a note) when
-// the steps cannot be analysed one by one.
-std::optional<SteppedSineFrfOptions> stepped_sine_options(const Experiment& e, const nlohmann::json& d,
-                                                          const FrfAnalysisOptions& o,
-                                                          std::vector<std::string>& notes) {
-  if (text(d, "kind") != "stepped_sine") return std::nullopt;
-  if (e.r_names.size() != 1 || e.u_names.size() != 1) {
-    notes.push_back("excitation: a stepped sine excites one direction per frequency and cannot separate " +
-                    std::to_string(e.u_names.size()) + " plant inputs from " + std::to_string(e.r_names.size()) +
-                    " references; Welch analysis instead");
-    return std::nullopt;
-  }
-  const auto steps = d.find("steps");
-  const double cycles = number(d, "measure_periods", 0.0);
-  if (steps == d.end() || !steps->is_array() || !(cycles >= 1.0) || cycles != std::floor(cycles)) {
-    notes.push_back(
-        "excitation: the stepped-sine description has no usable steps or measure_periods; Welch analysis instead");
-    return std::nullopt;
-  }
-  SteppedSineFrfOptions s;
-  s.sample_time = e.sample_time;
-  s.f_min = o.f_min;
-  s.f_max = o.f_max;
-  for (const auto& step : *steps) {
-    const double start = step.is_object() ? number(step, "measure_start_sample", -1.0) : -1.0;
-    const double length = step.is_object() ? number(step, "measure_samples", 0.0) : 0.0;
-    if (!(start >= 0.0) || !(length >= 2.0)) {
-      notes.push_back(
-          "excitation: a stepped-sine step without measure_start_sample / measure_samples; Welch analysis instead");
-      return std::nullopt;
-    }
-    s.steps.push_back(
-        {static_cast<Eigen::Index>(start), static_cast<Eigen::Index>(length), static_cast<Eigen::Index>(cycles)});
-  }
-  return s;
-}
 
 void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double confidence) {
   const double factor =
@@ -208,24 +79,25 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
   Eigen::MatrixXd r = e.r_deviation(), u = e.u_deviation(), y = e.y_deviation();
 
   const nlohmann::json* d = excitation_description(e);
-  report.excitation = d ? text(*d, "kind") : std::string();
-  if (report.excitation.empty()) report.excitation = "unknown";
+  report.excitation = excitation_kind(d);
+  const Periodicity detected = detect_periodicity(r, o.periodicity);
+  const std::optional<PeriodicPlan> periodic = plan_periodic(e, detected, d, o, report.notes, report.warnings);
 
-  Eigen::Index periods = 0;
-  std::optional<PeriodicFrfOptions> periodic = d ? periodic_options(e, *d, o, &periods, report.notes) : std::nullopt;
   const Eigen::MatrixXd* coherence = nullptr;
   Eigen::MatrixXd welch_coherence;
   if (periodic) {
-    const Eigen::Index used = periods * periodic->period_samples;
-    const PeriodicFrf p = estimate_periodic_frf(r.topRows(used), u.topRows(used), y.topRows(used), *periodic);
+    const Eigen::Index used = periodic->end_sample;
+    const PeriodicFrf p = estimate_periodic_frf(r.topRows(used), u.topRows(used), y.topRows(used), periodic->options);
     report.method = "periodic";
+    report.periodic = periodic->summary;
+    report.periodic->periods_used = p.periods_used;
     report.plant = p.plant;
     report.plant_direct = p.plant_direct;
     report.output_from_reference = p.output_from_reference;
     report.input_from_reference = p.input_from_reference;
     report.blocks = p.blocks;
     if (p.blocks < 2) report.notes.push_back("periodic analysis: one block only; no noise bounds");
-  } else if (const auto stepped = d ? stepped_sine_options(e, *d, o, report.notes) : std::nullopt) {
+  } else if (const auto stepped = plan_stepped_sine(e, d, o, report.notes)) {
     const SteppedSineFrf p = estimate_stepped_sine_frf(r, u, y, *stepped);
     report.method = "stepped_sine";
     report.plant = p.plant;

@@ -8,6 +8,14 @@
 #include "core/linalg.hpp"
 
 namespace ambid::ident {
+namespace {
+
+InsufficientData rank_deficient(Eigen::Index line, Eigen::Index rank, Eigen::Index unknowns) {
+  return InsufficientData("local polynomial FRF: the local problem around line " + std::to_string(line) +
+                          " is rank deficient (rank " + std::to_string(rank) + " of " + std::to_string(unknowns) + ")");
+}
+
+}  // namespace
 
 std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::MatrixXcd>& X,
                                                    const std::vector<Eigen::MatrixXcd>& Z,
@@ -16,7 +24,8 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
   const auto P = static_cast<Eigen::Index>(X.size());
   const auto nl = static_cast<Eigen::Index>(lines.size());
   if (P < 1 || Z.size() != X.size()) throw Error("local polynomial FRF: need one X and one Z per period position");
-  if (o.degree < 0 || o.half_width < 0) throw Error("local polynomial FRF: degree and half width must be >= 0");
+  if (o.degree < 0 || o.half_width < 0 || o.denominator_degree < 0)
+    throw Error("local polynomial FRF: degrees and half width must be >= 0");
   const Eigen::Index nx = X.front().cols(), nz = Z.front().cols();
   for (Eigen::Index q = 0; q < P; ++q) {
     const auto qi = static_cast<std::size_t>(q);
@@ -24,13 +33,14 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
       throw Error("local polynomial FRF: inconsistent sizes at period position " + std::to_string(q));
   }
   const Eigen::Index D1 = o.degree + 1;
-  const Eigen::Index unknowns = (nx + P) * D1;
+  const Eigen::Index unknowns = (nx + (o.transient ? P : 0)) * D1;  // per response
+  const Eigen::Index Dd = o.denominator_degree;
   Eigen::Index R = o.half_width;
   if (R == 0)
     R = std::max<Eigen::Index>(
-        1, static_cast<Eigen::Index>(std::ceil(0.75 * static_cast<double>(unknowns) / static_cast<double>(P))));
+        1, static_cast<Eigen::Index>(std::ceil(0.75 * static_cast<double>(unknowns + Dd) / static_cast<double>(P))));
   const Eigen::Index w = std::min<Eigen::Index>(2 * R + 1, nl);
-  if (P * w < unknowns + 1)
+  if (P * w < unknowns + Dd + 1)
     throw InsufficientData("local polynomial FRF: " + std::to_string(nl) + " lines are too few for a window of " +
                            std::to_string(2 * R + 1) + " lines (" + std::to_string(unknowns) + " unknowns per line)");
 
@@ -77,7 +87,7 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
         double p = 1.0;
         for (Eigen::Index d = 0; d < D1; ++d) {
           for (Eigen::Index s = 0; s < nx; ++s) Phi(row, s * D1 + d) = Xe[qi](a + i, s) * p;
-          Phi(row, nx * D1 + q * D1 + d) = p;
+          if (o.transient) Phi(row, nx * D1 + q * D1 + d) = p;
           p *= delta;
         }
         rhs.row(row) = Ze[qi].row(a + i);
@@ -90,14 +100,38 @@ std::vector<Eigen::MatrixXcd> local_polynomial_frf(const std::vector<Eigen::Matr
         throw InsufficientData("local polynomial FRF: a regressor vanishes around line " + std::to_string(kc));
       Phi.col(col) /= norms(col);
     }
-    const linalg::RankedSolution<Eigen::MatrixXcd> ls = linalg::qr_solve(Phi, rhs, 1e-10);
-    if (ls.rank < unknowns)
-      throw InsufficientData("local polynomial FRF: the local problem around line " + std::to_string(kc) +
-                             " is rank deficient (rank " + std::to_string(ls.rank) + " of " + std::to_string(unknowns) +
-                             ")");
-    const Eigen::MatrixXcd& theta = ls.x;
     Eigen::MatrixXcd G(nz, nx);
-    for (Eigen::Index s = 0; s < nx; ++s) G.col(s) = theta.row(s * D1).transpose() / norms(s * D1);
+    if (Dd == 0) {
+      const linalg::RankedSolution<Eigen::MatrixXcd> ls = linalg::qr_solve(Phi, rhs, 1e-10);
+      if (ls.rank < unknowns) throw rank_deficient(kc, ls.rank, unknowns);
+      for (Eigen::Index s = 0; s < nx; ++s) G.col(s) = ls.x.row(s * D1).transpose() / norms(s * D1);
+    } else {
+      // Common denominator 1 + sum a_d delta^d of every response: Z = N X + T - (D - 1) Z, one
+      // least-squares problem coupling the responses through a_d.
+      const Eigen::Index rows = P * we, cols = nz * unknowns + Dd;
+      Eigen::MatrixXcd A = Eigen::MatrixXcd::Zero(nz * rows, cols);
+      Eigen::MatrixXcd b(nz * rows, 1);
+      for (Eigen::Index j = 0; j < nz; ++j) {
+        A.block(j * rows, j * unknowns, rows, unknowns) = Phi;
+        b.middleRows(j * rows, rows) = rhs.col(j);
+        for (Eigen::Index q = 0; q < P; ++q)
+          for (Eigen::Index i = 0; i < we; ++i) {
+            const double delta = static_cast<double>(ext_lines[static_cast<std::size_t>(a + i)] - kc) / scale;
+            double p = delta;
+            for (Eigen::Index d = 0; d < Dd; ++d, p *= delta)
+              A(j * rows + q * we + i, nz * unknowns + d) = -p * rhs(q * we + i, j);
+          }
+      }
+      Eigen::VectorXd den_norms = A.rightCols(Dd).colwise().norm().transpose();
+      for (Eigen::Index d = 0; d < Dd; ++d) {
+        if (!(den_norms(d) > 0.0)) den_norms(d) = 1.0;
+        A.col(nz * unknowns + d) /= den_norms(d);
+      }
+      const linalg::RankedSolution<Eigen::MatrixXcd> ls = linalg::qr_solve(A, b, 1e-10);
+      if (ls.rank < cols) throw rank_deficient(kc, ls.rank, cols);
+      for (Eigen::Index j = 0; j < nz; ++j)
+        for (Eigen::Index s = 0; s < nx; ++s) G(j, s) = ls.x(j * unknowns + s * D1, 0) / norms(s * D1);
+    }
     out.push_back(G);
   }
   return out;

@@ -20,6 +20,14 @@ namespace ambid::ident {
 struct LocalPolynomialOptions {
   int degree = 4;      // D (4: noise-free errors ~1e-8 at mid band, ~1e-3 at sharp features)
   int half_width = 0;  // lines on each side; 0: the smallest giving 1.5x as many equations as unknowns
+  // Model the transient terms t_{q,d}. Without them (periods in steady state) the window can be
+  // narrower, which lowers the interpolation error where lines are sparse next to sharp features.
+  bool transient = true;
+  // Degree of a common denominator 1 + sum a_d delta^d of the local model (0: polynomial).
+  // A local rational model (after McKelvey and Guerin, "Non-parametric frequency response
+  // estimation using a local rational model", SYSID 2012) follows a pole near the window that
+  // no polynomial over the same lines can: closed-loop poles near DC under integral action.
+  int denominator_degree = 0;
 };
 
 // X[q]: lines x regressors (references), Z[q]: lines x responses, one entry per period

@@ -56,7 +56,9 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
   if (o.first_sample < 0) throw Error("periodic FRF: first_sample must be >= 0, got " + std::to_string(o.first_sample));
   if (o.transient_periods < 0)
     throw Error("periodic FRF: transient_periods must be >= 0, got " + std::to_string(o.transient_periods));
-  if (o.periods_per_block < r.cols())
+  // Fewer periods per block than references: only the local polynomial method separates the
+  // references, through their different spectra on neighbouring lines (e.g. zippered grids).
+  if (o.periods_per_block < r.cols() && o.transient_model != PeriodicFrfOptions::TransientModel::local_polynomial)
     throw Error("periodic FRF: " + std::to_string(r.cols()) +
                 " references need at least as many periods per block, got " + std::to_string(o.periods_per_block));
   if (r.cols() < u.cols())
@@ -113,7 +115,7 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
     if (!(level(l) > 1e-9 * top))
       throw InsufficientData("periodic FRF: " + line_text(k, f(l)) + " carries no excitation (" +
                              std::to_string(level(l)) + " against " + std::to_string(top) + ")");
-    for (Eigen::Index b = 0; b < B; ++b) {
+    for (Eigen::Index b = 0; P >= nr && b < B; ++b) {
       const Eigen::MatrixXcd R = block_matrix(Rp, b, P, l);
       if (const double ic = inverse_condition(R); !(ic > 1e-8))
         throw InsufficientData("periodic FRF: at " + line_text(k, f(l)) + " the " + std::to_string(nr) +
@@ -231,6 +233,14 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
       out.output_noise_variance.row(l) = (vy / positions).transpose();
       out.input_noise_variance.row(l) = (vu / positions).transpose();
     }
+  }
+  if (o.plant_from_period_means && lpm && P == 1) {
+    Eigen::MatrixXcd U_mean = Eigen::MatrixXcd::Zero(nl, nu), Y_mean = Eigen::MatrixXcd::Zero(nl, ny);
+    for (Eigen::Index b = 0; b < B; ++b) {
+      U_mean += Up[static_cast<std::size_t>(b)];
+      Y_mean += Yp[static_cast<std::size_t>(b)];
+    }
+    out.plant.value = local_polynomial_frf({U_mean / b_count}, {Y_mean / b_count}, o.lines, o.local_polynomial);
   }
   return out;
 }

@@ -25,6 +25,12 @@
 // multisine). For P > 1 the per-block responses are therefore estimated by the local
 // polynomial method (frf_local_polynomial.hpp), which models that transient as a smooth
 // function of frequency around each line (transient_model = automatic).
+//
+// Several references excited on different lines (zippered or interleaved grids, shifted
+// PRBS), P = 1: no single line determines the MIMO response, but with transient_model =
+// local_polynomial the references are separated through their different spectra on the
+// neighbouring lines of the local window (each period is a block), which gives the full
+// T_yr, T_ur and G at every line excited by any reference.
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +50,11 @@ struct PeriodicFrfOptions {
   enum class TransientModel { automatic, none, local_polynomial };
   TransientModel transient_model = TransientModel::automatic;  // automatic: local polynomial when P > 1
   LocalPolynomialOptions local_polynomial;
+  // With the local model and P = 1: the plant from a local model of the period-mean outputs on
+  // the period-mean inputs (G is interpolated across lines instead of T_yr and T_ur, whose
+  // ratio is ill-conditioned where the loop suppresses an input direction). The variance stays
+  // that of the indirect estimate.
+  bool plant_from_period_means = false;
 };
 
 struct PeriodicFrf {
@@ -59,7 +70,8 @@ struct PeriodicFrf {
 };
 
 // r, u, y: samples x signals, deviations. Throws Error for inconsistent sizes or options (a
-// line outside (0, N/2) or repeated, P < references, non-positive sample time), and
+// line outside (0, N/2) or repeated, P < references without the local polynomial
+// transient model, non-positive sample time), and
 // InsufficientData when fewer than one block remains after the transient, or when at some line
 // the references of a block are not of full rank or T_ur is singular (names the line).
 PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,

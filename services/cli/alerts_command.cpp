@@ -2,9 +2,12 @@
 // subscriber gets them), and with --follow every new one until interrupted. --until LEVEL:PARAM
 // ends with exit 0 at the first alert of that level about that parameter (scripts, tests);
 // --timeout ends with exit 3 when it has not come.
+#include <deque>
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "core/error.hpp"
 #include "services/cli/operator_commands.hpp"
@@ -33,6 +36,30 @@ void print(const bus::Alert& a) {
   std::cout << "  " << a.message << std::endl;
 }
 
+// The alerts already printed. A reconnecting or restarted diagnostics daemon sends its current
+// alerts again (transient-local history): each is printed once. The oldest are forgotten beyond
+// kRemembered, far more alerts than a follow session sees.
+class PrintedAlerts {
+ public:
+  // True the first time `a` is seen.
+  bool first(const bus::Alert& a) {
+    std::string key = a.plant_id + '\n' + a.parameter + '\n' + a.fault + '\n' + std::to_string(a.channel) + '\n' +
+                      std::to_string(static_cast<int>(a.level)) + '\n' + std::to_string(a.time);
+    if (!keys_.insert(key).second) return false;
+    order_.push_back(std::move(key));
+    if (order_.size() > kRemembered) {
+      keys_.erase(order_.front());
+      order_.pop_front();
+    }
+    return true;
+  }
+
+ private:
+  static constexpr std::size_t kRemembered = 100000;
+  std::set<std::string> keys_;
+  std::deque<std::string> order_;
+};
+
 void run(const AlertsArguments& args) {
   std::string until_level, until_parameter;
   if (!args.until.empty()) {
@@ -47,6 +74,7 @@ void run(const AlertsArguments& args) {
   const bool follow = args.follow || !args.until.empty();
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  PrintedAlerts printed;
   while (!daemons::stop_requested()) {
     if (!follow && elapsed() > args.wait) return;
     if (args.timeout > 0 && elapsed() > args.timeout) {
@@ -56,6 +84,7 @@ void run(const AlertsArguments& args) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::Alert& a : alerts->take()) {
       if (!args.all_plants && a.plant_id != args.bus.plant_id) continue;
+      if (!printed.first(a)) continue;
       print(a);
       if (!until_level.empty() && convert::level_name(a.level) == until_level && a.parameter == until_parameter) return;
     }

@@ -13,11 +13,17 @@
 // DIR/trends.sqlite.
 //
 // Time: the experiment contract has no time key, so inputs are laid end to end in the order
-// given: an experiment lasts its record length, a model file 1 s; a window's time is its end.
+// given: an experiment lasts its windows, a model file 1 s; a window's time is its end.
+//
+// A window that cannot be identified (ident::window_failure: too little excitation, a model
+// without a continuous-time equivalent, ...), or a model file without a continuous part, is
+// skipped, never the end of the run: said on stderr, counted by reason in diagnosis.json
+// ("skipped_windows", and each input's "skipped" list) and in summary.txt.
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -31,10 +37,13 @@
 #include "core/experiment_io.hpp"
 #include "core/json_text.hpp"
 #include "core/model_file.hpp"
+#include "core/no_continuous_equivalent.hpp"
 #include "diagnostics/experiment_windows.hpp"
 #include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
+#include "diagnostics/plant_families.hpp"
+#include "identifier/identify_experiment.hpp"
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
@@ -57,12 +66,26 @@ struct DiagnoseArguments {
   std::string out;
 };
 
+struct Skipped {
+  std::size_t window = 0;  // 1-based within its input
+  double time = 0.0;       // the window's end
+  ident::WindowFailure failure;
+};
+
 struct Input {
   std::string file;
   std::string kind;  // "experiment" | "model"
   std::vector<diag::EstimateWindow> windows;
+  std::vector<Skipped> skipped;
+  double time_to = 0.0;            // end of its last window, identified or skipped
   std::optional<Experiment> loop;  // an experiment's sidecar (no samples): plant and controller
 };
+
+void report_skipped(const Input& in, std::size_t windows) {
+  const Skipped& s = in.skipped.back();
+  std::cerr << "ambid diagnose: " << in.file << ": window " << s.window << " of " << windows << " (to t = " << s.time
+            << " s) skipped, not identified (" << s.failure.reason << "): " << s.failure.message << "\n";
+}
 
 bool is_model_file(const std::filesystem::path& path) {
   if (path.extension() != ".json") return false;
@@ -77,44 +100,66 @@ bool is_model_file(const std::filesystem::path& path) {
 
 Input model_input(const std::string& file, double start, const std::string& plant_id) {
   const Model m = read_model(file);
-  if (m.plant_model != "amb1dof_voltage")
-    throw Error(file + ": plant_model is '" + m.plant_model +
-                "'; diagnose knows the parameters of amb1dof_voltage only");
   try {
-    return {file,
-            "model",
-            {diag::estimate_window(m.physical, m.uncertainty, start + kModelDuration, plant_id, diag::Source::replay)},
-            std::nullopt};
+    diag::require_diagnostics_piece(m.plant_model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& e) {
+    throw Error(file + ": plant_model is '" + m.plant_model + "': " + e.what());
+  }
+  Input in{file, "model", {}, {}, start + kModelDuration, std::nullopt};
+  if (!m.no_continuous.empty()) {  // a valid discrete model without physical parameters
+    in.skipped.push_back(
+        {1, in.time_to,
+         ident::window_failure(NoContinuousEquivalent("the model has no continuous part, so no physical parameters (" +
+                                                      m.no_continuous + ")"))});
+    report_skipped(in, 1);
+    return in;
+  }
+  try {
+    in.windows.push_back(diag::estimate_window(m.physical, m.uncertainty, in.time_to, plant_id, diag::Source::replay));
   } catch (const Error& e) {
     throw Error(file + ": " + e.what());
   }
+  return in;
 }
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
                        const std::string& plant_id) {
   ident::IdentifyOptions options = ident::window_identify_options(method);
   const Experiment e = read_experiment(file).experiment;
+  try {
+    diag::require_diagnostics_piece(e.plant.model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+  } catch (const Error& err) {
+    throw Error(file + ": " + err.what());
+  }
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
-  Input in{file, "experiment", {}, e};
+  // What no window of this record could get past is an error of the input, not of a window.
+  try {
+    ident::require_method_inputs(e, method);
+  } catch (const Error& err) {
+    throw Error(file + ": " + err.what());
+  }
+  Input in{file, "experiment", {}, {}, start, e};
   in.loop->t.resize(0);
   in.loop->y.resize(0, 0);
   in.loop->u.resize(0, 0);
   in.loop->r.resize(0, 0);
+  std::vector<Experiment> parts;
   try {
-    const std::vector<Experiment> parts = diag::split_experiment(e, samples);
-    for (std::size_t i = 0; i < parts.size(); ++i) {
-      try {
-        const double end = start + double(i + 1) * double(samples) * e.sample_time;
-        options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
-        in.windows.push_back(
-            diag::estimate_window(ident::identify_window(parts[i], options), end, plant_id, diag::Source::replay));
-      } catch (const Error& err) {
-        throw Error("window " + std::to_string(i + 1) + " of " + std::to_string(parts.size()) + ": " + err.what());
-      }
-    }
+    parts = diag::split_experiment(e, samples);
   } catch (const Error& err) {
     throw Error(file + " (" + std::to_string(length) + " s): " + err.what());
+  }
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    in.time_to = start + double(i + 1) * double(samples) * e.sample_time;
+    options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
+    try {
+      in.windows.push_back(
+          diag::estimate_window(ident::identify_window(parts[i], options), in.time_to, plant_id, diag::Source::replay));
+    } catch (const Error& err) {
+      in.skipped.push_back({i + 1, in.time_to, ident::window_failure(err)});
+      report_skipped(in, parts.size());
+    }
   }
   return in;
 }
@@ -126,6 +171,21 @@ std::string number(double v) {
   return s.str();
 }
 
+// Skipped windows by reason, every reason listed (0 for one that did not occur).
+std::map<std::string, std::size_t> skipped_by_reason(const std::vector<Input>& inputs) {
+  std::map<std::string, std::size_t> count;
+  for (const std::string& reason : ident::window_failure_reasons()) count[reason] = 0;
+  for (const Input& in : inputs)
+    for (const Skipped& s : in.skipped) ++count[s.failure.reason];
+  return count;
+}
+
+std::size_t skipped_total(const std::vector<Input>& inputs) {
+  std::size_t n = 0;
+  for (const Input& in : inputs) n += in.skipped.size();
+  return n;
+}
+
 nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Input>& inputs,
                               std::size_t baseline_windows, const diag::OfflineDiagnosis& d) {
   nlohmann::json j;
@@ -133,10 +193,19 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
   j["plant_id"] = a.plant_id;
   j["baseline_inputs"] = a.baseline;
   j["baseline_windows"] = baseline_windows;
+  j["skipped_windows"] = {{"count", skipped_total(inputs)}, {"reasons", skipped_by_reason(inputs)}};
   j["inputs"] = nlohmann::json::array();
-  for (const Input& in : inputs)
-    j["inputs"].push_back(
-        {{"file", in.file}, {"kind", in.kind}, {"windows", in.windows.size()}, {"time_to", in.windows.back().time}});
+  for (const Input& in : inputs) {
+    nlohmann::json skipped = nlohmann::json::array();
+    for (const Skipped& s : in.skipped)
+      skipped.push_back(
+          {{"window", s.window}, {"time", s.time}, {"reason", s.failure.reason}, {"message", s.failure.message}});
+    j["inputs"].push_back({{"file", in.file},
+                           {"kind", in.kind},
+                           {"windows", in.windows.size()},
+                           {"skipped", skipped},
+                           {"time_to", in.time_to}});
+  }
   for (const auto& [key, b] : d.baselines)
     j["baselines"][key.second] = {{"mean", b.mean},
                                   {"extra_spread", b.extra_spread},
@@ -155,14 +224,23 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
   s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first "
     << a.baseline << " (" << baseline_windows << " windows)\n\n";
   for (const Input& in : inputs)
-    s << "  " << in.kind << " " << in.file << ": " << in.windows.size()
-      << " window(s), to t = " << number(in.windows.back().time) << " s\n";
+    s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s)"
+      << (in.skipped.empty() ? std::string() : ", " + std::to_string(in.skipped.size()) + " skipped")
+      << ", to t = " << number(in.time_to) << " s\n";
+  if (const std::size_t n = skipped_total(inputs); n > 0) {
+    s << "\n  " << n << " window(s) skipped, not identified:";
+    for (const auto& [reason, count] : skipped_by_reason(inputs))
+      if (count > 0) s << " " << reason << " " << count;
+    s << " (stderr and diagnosis.json name each)\n";
+  }
   s << "\n  parameter  level  baseline      extra spread  latest\n";
   for (const auto& [key, level] : d.final_levels) {
     const diag::Baseline& b = d.baselines.at(key);
     double latest = 0.0;
-    for (const diag::ParameterEstimate& e : inputs.back().windows.back().estimates)
-      if (e.parameter == key.second) latest = e.value;
+    for (const Input& in : inputs)
+      for (const diag::EstimateWindow& w : in.windows)
+        for (const diag::ParameterEstimate& e : w.estimates)
+          if (e.parameter == key.second) latest = e.value;
     char row[160];
     std::snprintf(row, sizeof row, "  %-9s  %-5s  %-12.6g  %-12.3g  %.6g\n", key.second.c_str(),
                   std::string(diag::to_string(level)).c_str(), b.mean, b.extra_spread, latest);
@@ -230,7 +308,7 @@ void run(const DiagnoseArguments& a) {
     if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
     inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
                                          : experiment_input(file, start, a.window, a.method, a.plant_id));
-    start = inputs.back().windows.back().time;
+    start = inputs.back().time_to;
   }
   std::size_t baseline_windows = 0;
   std::vector<diag::EstimateWindow> windows;
@@ -240,8 +318,12 @@ void run(const DiagnoseArguments& a) {
   }
   if (baseline_windows < diag::kMinLearningWindows)
     throw Error("the first " + std::to_string(a.baseline) + " input(s) give " + std::to_string(baseline_windows) +
-                " window(s); the baseline needs at least " + std::to_string(diag::kMinLearningWindows) +
-                " (a shorter --window or a larger --baseline)");
+                " identified window(s) (" + std::to_string(skipped_total(inputs)) +
+                " window(s) of all inputs skipped, see above); the baseline needs at least " +
+                std::to_string(diag::kMinLearningWindows) + " (a shorter --window or a larger --baseline)");
+  if (windows.size() == baseline_windows)
+    throw Error("no window after the baseline was identified (" + std::to_string(skipped_total(inputs)) +
+                " window(s) skipped, see above): nothing left to diagnose");
   const std::filesystem::path dir(a.out);
   const report::OutputLock lock(dir);
   diag::EngineConfig config;

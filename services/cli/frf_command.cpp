@@ -45,6 +45,21 @@ std::string complex_text(std::complex<double> z) {
   return text;
 }
 
+void print_periodic(const ident::PeriodicExcitation& p, const std::vector<std::string>& references) {
+  std::cout << "  periodic r (" << (p.source == "r" ? "detected in the record" : "sidecar description, confirmed by r")
+            << "): period " << p.period_samples << " samples (" << format_number(p.period_s) << " s), "
+            << p.whole_periods << " whole periods, " << p.transient_periods << " discarded as transient, "
+            << p.periods_used << " used; " << p.estimator << "\n";
+  for (std::size_t c = 0; c < p.lines.size() && c < references.size(); ++c) {
+    std::cout << "    " << references[c] << ": " << p.lines[c].size() << " excited lines";
+    if (!p.lines[c].empty())
+      std::cout << " " << format_number(static_cast<double>(p.lines[c].front()) / p.period_s) << "-"
+                << format_number(static_cast<double>(p.lines[c].back()) / p.period_s) << " Hz on a "
+                << format_number(1.0 / p.period_s) << " Hz grid";
+    std::cout << "\n";
+  }
+}
+
 void print_summary(const ident::FrfReport& r, const std::string& path, const std::string& out, std::size_t plots,
                    double band_top_hz) {
   std::cout << "ambid frf: " << path << ": " << r.method << " estimate (" << r.excitation << " excitation, " << r.blocks
@@ -53,6 +68,7 @@ void print_summary(const ident::FrfReport& r, const std::string& path, const std
                                        : " steps")
             << "), " << r.frequency_hz.size() << " lines " << format_number(r.frequency_hz(0)) << "-"
             << format_number(r.frequency_hz(r.frequency_hz.size() - 1)) << " Hz\n";
+  if (r.periodic) print_periodic(*r.periodic, r.reference_names);
   for (const ident::SensitivityPeak& p : r.sensitivity_peaks)
     std::cout << "  sensitivity " << p.loop << ": peak " << format_number(p.magnitude_db) << " dB at "
               << format_number(p.frequency_hz) << " Hz, ISO 14839-3 zone " << ident::to_string(p.zone) << "\n";
@@ -87,6 +103,12 @@ void add_frf_command(CLI::App& app) {
   frf->add_option("--max-order", o.fit_max_order, "largest denominator degree of the rational fit")
       ->capture_default_str();
   frf->add_option("--confidence", o.confidence, "confidence of the noise bounds")->capture_default_str();
+  frf->add_option("--period-tolerance", o.periodicity.tolerance,
+                  "r is periodic when it repeats to this fraction of its peak")
+      ->capture_default_str();
+  frf->add_option("--transient-periods", o.transient_periods,
+                  "periodic r: whole periods discarded at the start, -1: one when enough remain")
+      ->capture_default_str();
   frf->add_flag("--no-fit", args->no_fit, "skip the rational fits");
   frf->callback([args] {
     const report::OutputLock lock(args->out);
@@ -106,6 +128,7 @@ void add_frf_command(CLI::App& app) {
     const std::string values = frf_json(r, e, args->experiment, args->options).dump(1) + "\n";
     const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
     report::write_file_atomically(std::filesystem::path(args->out) / "frf.json", values);
+    for (const std::string& w : r.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
     print_summary(r, args->experiment, args->out, plots.size(), fit_band_top_hz(e, args->options));
   });
 }

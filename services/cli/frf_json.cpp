@@ -56,6 +56,28 @@ json model_json(const ident::FittedPair& fitted, double top_hz) {
           {"lines", fitted.fit.lines}};
 }
 
+// What the periodic analysis detected and used; lines as DFT indices of one period and in Hz.
+json periodic_json(const ident::PeriodicExcitation& p, const std::vector<std::string>& references) {
+  const double df = 1.0 / p.period_s;
+  json lines = json::object();
+  for (std::size_t c = 0; c < p.lines.size() && c < references.size(); ++c) {
+    json hz = json::array();
+    for (const Eigen::Index k : p.lines[c]) hz.push_back(static_cast<double>(k) * df);
+    lines[references[c]] = {{"count", p.lines[c].size()}, {"dft_lines", p.lines[c]}, {"frequency_hz", hz}};
+  }
+  return {{"source", p.source},
+          {"estimator", p.estimator},
+          {"period_samples", p.period_samples},
+          {"period_s", p.period_s},
+          {"line_spacing_hz", df},
+          {"first_sample", p.first_sample},
+          {"whole_periods", p.whole_periods},
+          {"transient_periods", p.transient_periods},
+          {"periods_per_block", p.periods_per_block},
+          {"periods_used", p.periods_used},
+          {"lines_per_reference", lines}};
+}
+
 }  // namespace
 
 nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experiment,
@@ -69,6 +91,7 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
               {"sample_time", experiment.sample_time},
               {"convention", "G(jw) from u to y deviations (SI units); u = K y + r; lag = negative phase"},
               {"frequency_hz", list(report.frequency_hz)}};
+  if (report.periodic) out["periodic"] = periodic_json(*report.periodic, report.reference_names);
   json plant = json::object();
   for (const ident::PlantPair& pair : report.pairs) plant[pair.name] = plant_json(pair, options.confidence);
   out["plant"] = plant;
@@ -101,6 +124,7 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
     out["controller_check"] = {{"median_relative_error", e(e.size() / 2)}, {"max_relative_error", e(e.size() - 1)}};
   }
   out["notes"] = report.notes;
+  out["warnings"] = report.warnings;
   return out;
 }
 

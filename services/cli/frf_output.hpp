@@ -23,7 +23,9 @@ bool pole_in_band(std::complex<double> pole, double top_hz);
 
 // frf.json: frequency_hz, plant (per "OUTPUT/INPUT": re, im, noise_std and bound, or
 // coherence), plant_direct, sensitivity (per loop: peak_db, peak_hz, zone), model (per pair:
-// poles and zeros as [re, im] in rad/s, gain, degrees, misfit), controller_check, notes.
+// poles and zeros as [re, im] in rad/s, gain, degrees, misfit), controller_check, periodic
+// (what a periodic analysis detected: period, whole and used periods, lines per reference),
+// notes, warnings.
 nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experiment,
                         const std::string& experiment_path, const ident::FrfAnalysisOptions& options);
 

@@ -1,4 +1,6 @@
 // `ambid identify`: identify the plant of an experiment by a named method and write model.json.
+// A model without a continuous-time equivalent is still written (its discrete part, key
+// no_continuous saying why) with a warning on stderr, and the exit status is 0.
 #include <iostream>
 #include <memory>
 
@@ -21,6 +23,8 @@ struct IdentifyArguments {
 
 void print_summary(const Model& m, const std::string& out) {
   std::cout << "ambid identify: " << m.plant_model << " by " << m.method << ", " << m.discrete.states() << " states\n";
+  if (!m.no_continuous.empty())
+    std::cout << "  discrete model only: no continuous-time equivalent (model.json key no_continuous, warning below)\n";
   for (const auto& [name, value] : m.parameters) {
     std::cout << "  " << name << " = " << value;
     if (const auto it = m.uncertainty.find(name); it != m.uncertainty.end()) std::cout << " +- " << it->second;

@@ -1,10 +1,16 @@
 // `ambid status`: what the running service says about itself: each daemon's latest Health and
 // the plant's current source and plant description (id, plant family, controller kind),
-// collected for --wait seconds.
+// collected for --wait seconds. A daemon that died leaves nothing on the bus (its
+// transient-local Health goes with it), so the roles the operator expects are named (--expect)
+// and each one without a live daemon is listed as LOST, exit 4.
 #include <chrono>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "services/cli/operator_commands.hpp"
 #include "services/convert/alert.hpp"
@@ -18,7 +24,16 @@ namespace {
 struct StatusArguments {
   daemons::BusOptions bus;
   double wait = 3.0;
+  std::string expect = "plant,identifier,diagnostics";  // the local stack's roles
 };
+
+std::vector<std::string> comma_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) items.push_back(item);
+  return items;
+}
 
 void run(const StatusArguments& args) {
   auto bus = args.bus.connect();
@@ -59,11 +74,22 @@ void run(const StatusArguments& args) {
       std::cout << "  sensitivity peak " << p.output << ": " << p.magnitude << " at " << p.frequency << " Hz, zone "
                 << zones[int(p.zone)] << "\n";
   }
-  for (const auto& [node, h] : nodes)
+  std::set<std::string> roles;
+  for (const auto& [node, h] : nodes) {
+    roles.insert(h.role);
     std::cout << node << " (" << h.role << "): " << convert::level_name(h.level) << " " << h.message << ", received "
               << h.received << ", published " << h.published << ", rejected " << h.errors << ", up " << h.time
               << " s\n";
+  }
+  bool lost = false;
+  for (const std::string& role : comma_list(args.expect))
+    if (!roles.count(role)) {
+      std::cout << role << " (expected): LOST, no daemon of this role answered within " << args.wait
+                << " s (stopped, crashed or unreachable)\n";
+      lost = true;
+    }
   std::cout << std::flush;
+  if (lost) throw CLI::RuntimeError(4);
 }
 
 }  // namespace
@@ -73,6 +99,10 @@ void add_status_command(CLI::App& app) {
   CLI::App* c = app.add_subcommand("status", "health of the running daemons and the plant's source");
   daemons::add_bus_options(*c, args->bus);
   c->add_option("--wait", args->wait, "seconds to listen")->capture_default_str();
+  c->add_option("--expect", args->expect,
+                "comma-separated roles that should be running; each one missing is listed as LOST (exit 4); "
+                "empty: none")
+      ->capture_default_str();
   c->callback([args] { run(*args); });
 }
 

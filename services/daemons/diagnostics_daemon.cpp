@@ -16,6 +16,8 @@
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/description_change.hpp"
+#include "services/daemons/plant_time.hpp"
+#include "services/daemons/window_failures.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -24,11 +26,16 @@ struct DiagnosticsConfig {
   std::string store = "ambid-trend.sqlite";
   diag::EngineConfig engine;
   double silence = 3.0;
+  diag::RetentionPolicy retention;
 };
+
+constexpr double kDay = 86400.0;
+constexpr double kRetentionPeriod = 600.0;  // plant seconds between two passes of the retention
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "diagnostics config",
-                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence"});
+                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence",
+                       "keep_windows_days", "aggregate_bucket", "keep_days"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
@@ -36,6 +43,11 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
   c.engine.policy.stale_timeout = config_value(j, "stale_timeout", c.engine.policy.stale_timeout);
   c.silence = config_value(j, "silence", c.silence);
+  // Per-window estimates for a week, then hourly aggregates for a year (README: disk use).
+  c.retention.aggregate_after = config_value(j, "keep_windows_days", 7.0) * kDay;
+  c.retention.bucket = config_value(j, "aggregate_bucket", 3600.0);
+  c.retention.max_age = config_value(j, "keep_days", 365.0) * kDay;
+  c.retention.validate();
   c.engine.validate();
   if (!(c.silence > 0)) throw Error("diagnostics config: silence must be > 0 s, got " + std::to_string(c.silence));
   return c;
@@ -53,6 +65,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   auto models = bus->reader<bus::IdentifiedModel>();
   auto sources = bus->reader<bus::PlantSourceState>();
   auto descriptions = bus->reader<bus::PlantDescription>();
+  auto health = bus->reader<bus::Health>();
   auto alerts = bus->writer<bus::Alert>();
   runtime.ready("trend store " + config.store);
 
@@ -102,22 +115,55 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     loop = d;
   };
   diag::Source source = diag::Source::sim;
-  std::optional<double> last_time;  // plant time of the last model processed
+  PlantTime plant_time;
+  std::optional<double> last_retention;  // plant time of the last retention pass
+  auto retain = [&](double now) {
+    if (last_retention && now - *last_retention < kRetentionPeriod) return;
+    last_retention = now;
+    try {
+      const diag::RetentionReport r = store.apply_retention(config.retention, now);
+      if (r.estimates_aggregated + r.aggregates_removed + r.alerts_removed > 0)
+        runtime.log("retention: " + std::to_string(r.estimates_aggregated) + " window estimates aggregated, " +
+                    std::to_string(r.aggregates_removed) + " aggregates and " + std::to_string(r.alerts_removed) +
+                    " alerts past their age removed");
+    } catch (const Error& e) {  // a full disk: the history stays as it is, the service goes on
+      runtime.log("retention failed: " + std::string(e.what()));
+      runtime.set_health(bus::AlertLevel::warn, "trend store retention failed: " + std::string(e.what()));
+    }
+  };
   auto last_model = std::chrono::steady_clock::now();
   bool stale = false;
+  bool identifier_failing = false;  // its Health says its windows keep failing (window_failures.hpp)
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : sources->take())
       if (s.plant_id == options.plant_id) source = convert::to_source(s.kind);
     for (const bus::PlantDescription& d : descriptions->take())
-      if (d.plant_id == options.plant_id) describe(d, last_time.value_or(0.0));
+      if (d.plant_id == options.plant_id) describe(d, plant_time.last().value_or(0.0));
+    for (const bus::Health& h : health->take()) {
+      if (h.node != options.plant_id + "/identifier") continue;
+      const bool failing = reports_failing_windows(h, options.plant_id);
+      // On the edge only: the next identified window brings the parameters back to OK.
+      if (failing && !identifier_failing)
+        publish(engine->mark_stale(options.plant_id, plant_time.last().value_or(0.0), "the identifier's " + h.message));
+      identifier_failing = failing;
+    }
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
-      if (last_time && m.time <= *last_time) continue;  // already processed (a late-joiner replay)
+      const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
+      if (!at) continue;  // already processed (a late-joiner replay)
+      if (at->after_restart) {
+        const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +
+                                    " s continues the history at " + std::to_string(at->time) + " s";
+        runtime.log(message);
+        runtime.set_health(bus::AlertLevel::ok, message);
+      }
       try {
-        publish(engine->process(convert::estimate_window(m, source)));
-        last_time = m.time;
+        diag::EstimateWindow window = convert::estimate_window(m, source);
+        window.time = at->time;
+        publish(engine->process(window));
+        retain(at->time);
         last_model = std::chrono::steady_clock::now();
         stale = false;
       } catch (const Error& e) {
@@ -128,9 +174,9 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     bool silent = seconds_since(last_model) > config.silence;
     for (const bus::StatusEvent& e : models->events())
       silent = silent || e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched;
-    if (silent && last_time && !stale) {
-      // The engine's clock is the plant's: the source went silent after *last_time.
-      publish(engine->check_stale(std::nextafter(*last_time + config.engine.policy.stale_timeout, INFINITY)));
+    if (silent && plant_time.last() && !stale) {
+      // The engine's clock is the plant's: the source went silent after the last model.
+      publish(engine->check_stale(std::nextafter(*plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
       stale = true;
     }
   }

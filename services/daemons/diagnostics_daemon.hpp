@@ -3,7 +3,9 @@
 // -> Alert messages (transient-local: a late subscriber gets the latest). When the models stop
 // (the identifier's writer loses liveliness or goes away, or none came for `silence` seconds
 // of wall time) every parameter of the plant is marked STALE at the last model time plus the
-// stale timeout; the next model brings it back to OK.
+// stale timeout; the next model brings it back to OK. When the identifier's Health says its
+// windows keep failing (window_failures.hpp) every parameter is marked STALE at once, naming
+// the reason; again the next model brings it back.
 //
 // Config (JSON, every key optional):
 //   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,

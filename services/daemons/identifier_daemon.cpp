@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
+#include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
 namespace ambid::daemons {
@@ -15,10 +16,13 @@ namespace {
 struct IdentifierConfig {
   WindowSettings windows{.window = 0.25, .settle = 0.25};
   ident::IdentifyOptions identify = window_identify_options(kDefaultWindowMethod);
+  WindowFailureRule failures;
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "identifier config", {"method", "window", "settle", "transient_samples"});
+  reject_unknown_keys(
+      j, "identifier config",
+      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent", "failing_fraction"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -28,6 +32,16 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
                                        Eigen::Index(config_value(j, "transient_samples", 0)));
   if (!(c.windows.window > 0))
     throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.windows.window));
+  // Signed, so that a negative value is named instead of wrapping around.
+  const auto count = [&](const char* key, std::size_t fallback) {
+    const int n = config_value(j, key, int(fallback));
+    if (n < 1) throw Error(std::string("identifier config: ") + key + " must be >= 1, got " + std::to_string(n));
+    return std::size_t(n);
+  };
+  c.failures.consecutive = count("failing_consecutive", c.failures.consecutive);
+  c.failures.recent = count("failing_recent", c.failures.recent);
+  c.failures.fraction = config_value(j, "failing_fraction", c.failures.fraction);
+  c.failures.validate();
   return c;
 }
 
@@ -53,6 +67,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
   prometheus::Counter& dropped_unidentified =
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
   WindowSteps steps(runtime, dropped_help);
+  WindowFailures failures(config.failures, runtime.metrics);
   runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
                 "; plant description from the bus");
   std::uint64_t seq = 0;
@@ -73,10 +88,22 @@ int run_identifier_daemon(const DaemonOptions& options) {
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
           runtime.metrics.published.Increment();
+          if (failures.identified() == WindowFailures::Change::cleared) {
+            runtime.set_health(bus::AlertLevel::ok, failures.message());
+            runtime.log(failures.message());
+          } else if (failures.failing()) {
+            runtime.set_health(bus::AlertLevel::warn, failures.message());  // its counts move on
+          }
         } catch (const Error& e) {
+          const ident::WindowFailure failure = ident::window_failure(e);
           runtime.metrics.rejected.Increment();
           dropped_unidentified.Increment(double(w.samples()));
-          runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified: " + e.what());
+          runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified (" + failure.reason +
+                      "): " + failure.message);
+          const WindowFailures::Change change = failures.failed(failure);
+          // While failing, Health follows every failed window (its counts and last reason).
+          if (failures.failing()) runtime.set_health(bus::AlertLevel::warn, failures.message());
+          if (change == WindowFailures::Change::started) runtime.log(failures.message());
         }
       }
     }

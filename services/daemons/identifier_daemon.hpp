@@ -9,7 +9,13 @@
 //    listed by `ambid daemon identifier --help`; an unknown name is refused at start),
 //    "window": 0.25 (s of samples per identification),
 //    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal
-//    operating point to the plant's own), "transient_samples": 0 (samples skipped at the start of every window)}
+//    operating point to the plant's own), "transient_samples": 0 (samples skipped at the start of every window),
+//    "failing_consecutive": 4, "failing_recent": 20, "failing_fraction": 0.5 (when windows keep
+//    failing: window_failures.hpp)}
+// A window the method cannot identify is skipped and counted by reason
+// (ambid_windows_unidentified_total{reason}); while windows keep failing Health is WARN
+// "windows not identified: ..." naming the last reason, and OK "windows identified again" after.
+// The diagnostics daemon marks the parameters STALE on that WARN.
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

@@ -134,6 +134,30 @@ TEST_F(ModelFile, OptionalPartsMayBeAbsent) {
   EXPECT_TRUE(m.fit_nrmse.empty());
 }
 
+TEST_F(ModelFile, ADiscreteOnlyModelSaysWhyItHasNoContinuousPart) {
+  Model m = example_model();
+  m.continuous.reset();
+  m.parameters.clear();
+  m.physical.clear();
+  m.uncertainty.clear();
+  m.no_continuous = "d2c: discrete eigenvalue -0.5 lies on the closed negative real axis";
+  const fs::path path = dir_ / "model.json";
+  write_model(m, path);
+  const json j = json::parse(read_text_file(path));
+  EXPECT_FALSE(j.contains("continuous"));
+  EXPECT_EQ(j["no_continuous"], m.no_continuous);
+  const Model back = read_model(path);
+  EXPECT_FALSE(back.continuous.has_value());
+  EXPECT_EQ(back.no_continuous, m.no_continuous);
+  EXPECT_EQ(back.discrete.A, m.discrete.A);
+  // A reason beside a continuous system contradicts itself.
+  json both = model_json(example_model());
+  both["no_continuous"] = "d2c failed";
+  EXPECT_THAT(read_error(both), HasSubstr("`no_continuous`"));
+  both["no_continuous"] = 3;
+  EXPECT_THAT(read_error(both), HasSubstr("no_continuous"));
+}
+
 TEST_F(ModelFile, MissingRequiredKeyIsNamed) {
   for (const char* key : {"format", "plant_model", "method", "sample_time", "discrete"}) {
     json j = model_json(example_model());

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.hpp"
+#include "core/no_continuous_equivalent.hpp"
 #include "core/state_space.hpp"
 
 namespace ambid {
@@ -41,7 +42,7 @@ TEST(StateSpace, LogarithmRefusedOnNegativeRealAxis) {
   try {
     d2c_zoh(d);
     FAIL() << "expected an error";
-  } catch (const Error& e) {
+  } catch (const NoContinuousEquivalent& e) {  // callers that keep the discrete model catch this type
     EXPECT_NE(std::string(e.what()).find("negative real axis"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("-0.5"), std::string::npos) << e.what();
   }

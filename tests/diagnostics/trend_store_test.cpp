@@ -5,6 +5,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -177,6 +179,79 @@ TEST(TrendStore, RetentionRemovesExactlyTheOldRows) {
   EXPECT_THROW(store.apply_retention(negative, 99.0), Error);
 }
 
+// Per-window estimates older than aggregate_after become hourly buckets whose mean, scatter,
+// mean sigma and extremes equal those computed here from the same values; a second pass that
+// cuts into a stored bucket merges into it; max_age removes old buckets too.
+TEST(TrendStore, RetentionAggregatesOldEstimatesIntoBuckets) {
+  TrendStore store(fresh_store_path("aggregate"));
+  Batch batch;
+  std::vector<double> first_hour;
+  for (int k = 0; k < 3 * 3600; k += 10) {  // 3 h of windows every 10 s
+    const double value = 17.5 + 0.05 * std::sin(0.37 * k) + (k >= 3600 ? 1.0 : 0.0);
+    if (k < 3600) first_hour.push_back(value);
+    batch.windows.push_back(window(k, "bearing-A", {{"R1", value, 0.04 + 1e-6 * k}}));
+  }
+  store.write(batch);
+  RetentionPolicy policy;
+  policy.aggregate_after = 3600.0;
+  const RetentionReport r = store.apply_retention(policy, 3 * 3600.0 + 100.0);  // cut at 2 h
+  EXPECT_EQ(r.estimates_aggregated, 720);
+  EXPECT_EQ(store.history("bearing-A", "R1").size(), 360u);  // the last hour stays per window
+  const std::vector<AggregatedEstimate> a = store.aggregates("bearing-A", "R1");
+  ASSERT_EQ(a.size(), 2u);
+  double mean = 0.0, square = 0.0;
+  for (double v : first_hour) mean += v / double(first_hour.size());
+  for (double v : first_hour) square += (v - mean) * (v - mean) / double(first_hour.size() - 1);
+  EXPECT_DOUBLE_EQ(a[0].start, 0.0);
+  EXPECT_DOUBLE_EQ(a[0].seconds, 3600.0);
+  EXPECT_EQ(a[0].windows, 360);
+  EXPECT_NEAR(a[0].mean, mean, 1e-12);
+  EXPECT_NEAR(a[0].spread, std::sqrt(square), 1e-9);
+  EXPECT_NEAR(a[0].mean_sigma, 0.04 + 1e-6 * 1795.0, 1e-12);  // sigma at the mean window time
+  EXPECT_DOUBLE_EQ(a[0].min, *std::min_element(first_hour.begin(), first_hour.end()));
+  EXPECT_NEAR(a[1].mean, mean + 1.0, 1e-3);
+  EXPECT_EQ(a[1].source, Source::rig);
+
+  // Late windows of an aggregated hour merge into its bucket.
+  Batch late;
+  late.windows.push_back(window(3599.5, "bearing-A", {{"R1", 100.0, 0.04}}));
+  store.write(late);
+  EXPECT_EQ(store.apply_retention(policy, 3 * 3600.0 + 100.0).estimates_aggregated, 1);
+  const std::vector<AggregatedEstimate> merged = store.aggregates("bearing-A", "R1");
+  ASSERT_EQ(merged.size(), 2u);
+  EXPECT_EQ(merged[0].windows, 361);
+  EXPECT_DOUBLE_EQ(merged[0].max, 100.0);
+  EXPECT_NEAR(merged[0].mean, (mean * 360.0 + 100.0) / 361.0, 1e-12);
+
+  RetentionPolicy expire;
+  expire.max_age = 1.9 * 3600.0;  // removes what ended before 4060 s: the first hour
+  EXPECT_EQ(store.apply_retention(expire, 3 * 3600.0 + 100.0).aggregates_removed, 1);
+  EXPECT_EQ(store.aggregates("bearing-A", "R1").size(), 1u);
+
+  RetentionPolicy bad;
+  bad.bucket = 0.0;
+  EXPECT_THROW(store.apply_retention(bad, 1.0), Error);
+}
+
+// A store of schema 1 (before the aggregates) opens with its rows and gains the new table.
+TEST(TrendStore, MigratesASchemaOneStoreKeepingItsRows) {
+  const auto path = fresh_store_path("migrate");
+  {
+    TrendStore store(path);
+    Batch batch;
+    batch.windows.push_back(window(1.0, "bearing-A", {{"R1", 17.5, 0.05}}));
+    store.write(batch);
+  }
+  raw_exec(path, "DROP TABLE estimate_aggregates; PRAGMA user_version = 1");
+  TrendStore store(path);
+  ASSERT_EQ(store.history("bearing-A", "R1").size(), 1u);
+  RetentionPolicy policy;
+  policy.aggregate_after = 0.0;
+  policy.bucket = 10.0;
+  EXPECT_EQ(store.apply_retention(policy, 20.0).estimates_aggregated, 1);
+  EXPECT_EQ(store.aggregates("bearing-A", "R1").size(), 1u);
+}
+
 TEST(TrendStore, WalModeAndSchemaVersion) {
   const auto path = fresh_store_path("schema");
   { TrendStore store(path); }
@@ -193,9 +268,9 @@ TEST(TrendStore, WalModeAndSchemaVersion) {
   sqlite3_finalize(stmt);
   sqlite3_close(db);
 
-  raw_exec(path, "PRAGMA user_version = 2");
+  raw_exec(path, "PRAGMA user_version = 3");
   const std::string message = error_of([&] { TrendStore store(path); });
-  EXPECT_NE(message.find("schema version 2 is newer than this program's 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("schema version 3 is newer than this program's 2"), std::string::npos) << message;
 }
 
 TEST(TrendStore, ErrorsNameTheOperationAndSqlitesMessage) {

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "core/experiment_io.hpp"
 
 namespace ambid {
 namespace {
@@ -151,10 +152,21 @@ std::vector<std::string> write_model_files(const fs::path& dir) {
 
 TEST(DiagnoseCli, AcceptsModelFiles) {
   const fs::path dir = fresh_dir("diagnose_models");
-  const std::vector<std::string> files = write_model_files(dir);
+  std::vector<std::string> files = write_model_files(dir);
+  // A discrete-only model (no continuous-time equivalent, `ambid identify` on such data) among
+  // them: a window without physical parameters, skipped with its reason.
+  nlohmann::json discrete_only = read_json(files[6]);
+  for (const char* key : {"physical", "uncertainty"}) discrete_only.erase(key);
+  discrete_only["no_continuous"] = "d2c: discrete eigenvalue -0.6 lies on the closed negative real axis";
+  files.push_back((dir / "discrete_only.json").string());
+  write_json(files.back(), discrete_only);
   const auto r = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("discrete_only.json: window 1 of 1 (to t = 8 s) skipped, not identified "
+                                  "(no_continuous_model): the model has no continuous part"));
   const nlohmann::json d = read_json(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["no_continuous_model"], 1);
+  EXPECT_EQ(d["inputs"][7]["skipped"][0]["reason"], "no_continuous_model");
   ASSERT_FALSE(d["alerts"].empty()) << r.output;
   const auto& a = d["alerts"][0];
   EXPECT_EQ(a["level"], "ERROR") << a.dump();
@@ -165,6 +177,7 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   for (const auto& other : d["alerts"]) EXPECT_EQ(other["parameter"], "R1") << other.dump();
 
   // A model without the uncertainty of a monitored parameter, or of another plant: refused.
+  files.pop_back();
   nlohmann::json m = read_json(files[6]);
   m["uncertainty"].erase("kw2");
   write_json(files[6], m);
@@ -216,6 +229,50 @@ TEST(DiagnoseCli, AFailedOrConcurrentRunLeavesThePreviousOutputs) {
   EXPECT_TRUE(fs::is_regular_file(dir / "out" / "diagnosis.json"));
 }
 
+// A record in the middle of the run whose recorded excitation is zero (switched off for 0.5 s):
+// neither of its windows can be identified. The run completes, diagnosis.json counts both with
+// their reason, stderr names them, and the other windows are diagnosed: R1 +20 % is still the
+// ERROR of coil 1.
+TEST(DiagnoseCli, WindowsThatCannotBeIdentifiedAreSkippedAndCounted) {
+  const fs::path dir = fresh_dir("diagnose_skipped");
+  std::vector<std::string> files = make_experiments(dir);
+  const std::string quiet = (dir / "quiet").string();
+  const auto q = run_ambid("sim" + kNoise + " --excitation none --seed 9 --set R1=21 --out " + quiet);
+  ASSERT_EQ(q.status, 0) << q.output;
+  Experiment e = read_experiment(quiet + ".json").experiment;  // without excitation: no r recorded
+  e.r_names = {"r1", "r2"};
+  e.r = Eigen::MatrixXd::Zero(e.samples(), 2);
+  write_experiment(e, quiet);
+  files.insert(files.begin() + 4, quiet + ".json");  // between the first and second hot record
+  const auto r = run_ambid("diagnose" + joined(files) + " --out " + (dir / "out").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output,
+              HasSubstr("quiet.json: window 1 of 2 (to t = 2.25 s) skipped, not identified (insufficient_data)"));
+  EXPECT_THAT(r.output, HasSubstr("quiet.json: window 2 of 2 (to t = 2.5 s) skipped"));
+  const nlohmann::json d = read_json(dir / "out" / "diagnosis.json");
+  EXPECT_EQ(d["skipped_windows"]["count"], 2);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["insufficient_data"], 2);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["no_continuous_model"], 0);
+  EXPECT_EQ(d["skipped_windows"]["reasons"]["error"], 0);
+  const nlohmann::json& in = d["inputs"][4];
+  EXPECT_EQ(in["file"], quiet + ".json");
+  EXPECT_EQ(in["windows"], 0);
+  ASSERT_EQ(in["skipped"].size(), 2u);
+  EXPECT_EQ(in["skipped"][0]["window"], 1);
+  EXPECT_DOUBLE_EQ(in["skipped"][1]["time"].get<double>(), 2.5);
+  EXPECT_EQ(in["skipped"][1]["reason"], "insufficient_data");
+  EXPECT_FALSE(in["skipped"][1]["message"].get<std::string>().empty());
+  EXPECT_DOUBLE_EQ(in["time_to"].get<double>(), 2.5);
+  // The records after it keep their place on the time axis and are diagnosed.
+  EXPECT_EQ(d["inputs"][5]["windows"], 2);
+  EXPECT_DOUBLE_EQ(d["inputs"][6]["time_to"].get<double>(), 3.5);
+  EXPECT_EQ(d["levels"]["R1"], "ERROR");
+  for (const auto& a : d["alerts"]) EXPECT_EQ(a["fault"], "coil_resistance") << a.dump();
+  std::ifstream summary(dir / "out" / "summary.txt");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("2 window(s) skipped, not identified: insufficient_data 2"));
+}
+
 TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
   const fs::path dir = fresh_dir("diagnose_bad");
   const auto files = make_experiments(dir);
@@ -248,7 +305,8 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     const auto r = run_ambid("diagnose" + joined(files) + out);
     EXPECT_NE(r.status, 0);
     EXPECT_THAT(r.output, HasSubstr("hot5.json"));
-    EXPECT_THAT(r.output, HasSubstr("no physical value of R1"));  // closed-loop gives no amb1dof physics
+    // Refused before any window is identified: diagnostics knows no fault signatures of it.
+    EXPECT_THAT(r.output, HasSubstr("diagnose: unknown plant 'lamstf' (known: amb1dof_voltage, maglev1coil_voltage)"));
   }
   {
     nlohmann::json sidecar = read_json(files[3]);

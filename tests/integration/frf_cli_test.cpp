@@ -9,14 +9,18 @@
 #include <complex>
 #include <fstream>
 #include <numbers>
+#include <random>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "core/experiment_io.hpp"
 #include "core/linalg.hpp"
 #include "core/state_space.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
+#include "plant_sim/closed_loop.hpp"
+#include "plant_sim/scenario.hpp"
 
 namespace ambid {
 namespace {
@@ -131,6 +135,67 @@ TEST(FrfCli, MultisineExperimentGivesPlantPoleZonesAndPlots) {
     SCOPED_TRACE("plots");
     check_plots(dir / "frf");
   }
+}
+
+// A record from another generator: plant_sim's bearing and controller driven by a zippered
+// random-phase multisine written here (0.2 s period, 5 Hz grid, r1 on the odd and r2 on the
+// even lines, 5 Hz to 1 kHz, 4 s), written without any excitation description.
+fs::path foreign_zippered_record(const fs::path& dir) {
+  const Eigen::Index N = 2000, samples = 40000;
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> phase(0.0, 2.0 * std::numbers::pi);
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(samples, 2);
+  for (Eigen::Index k = 1; k <= 200; ++k) {
+    const double phi = phase(rng);
+    for (Eigen::Index n = 0; n < samples; ++n)
+      r(n, (k + 1) % 2) += 0.005 * std::cos(2.0 * std::numbers::pi * static_cast<double>(k * (n % N)) / 2000.0 + phi);
+  }
+  sim::ScenarioOptions s;
+  s.duration = 4.0;
+  sim::Scenario scenario = sim::build_scenario(s);
+  scenario.options.excitation = r;
+  scenario.header.extra.json().erase("excitation");
+  write_experiment(sim::run_closed_loop(*scenario.truth, scenario.header, scenario.options), dir / "foreign");
+  return dir / "foreign.json";
+}
+
+TEST(FrfCli, ForeignPeriodicRecordIsAnalysedAtItsExactLines) {
+  const fs::path dir = cli_test::fresh_dir("frf_cli_foreign");
+  const fs::path record = foreign_zippered_record(dir);
+  ASSERT_FALSE(cli_test::read_json(record).contains("excitation"));
+  const CommandResult frf = run_ambid("frf " + record.string() + " --out " + (dir / "frf").string());
+  ASSERT_EQ(frf.status, 0) << frf.output;
+  EXPECT_THAT(frf.output, HasSubstr("periodic estimate (unknown excitation"));
+  EXPECT_THAT(frf.output, HasSubstr("periodic r (detected in the record): period 2000 samples (0.2 s), 20 whole "
+                                    "periods, 1 discarded as transient, 19 used; local rational"));
+  EXPECT_THAT(frf.output, HasSubstr("r1: 100 excited lines 5-995 Hz on a 5 Hz grid"));
+  EXPECT_THAT(frf.output, HasSubstr("r2: 100 excited lines 10-1e+03 Hz on a 5 Hz grid"));
+  const nlohmann::json json = cli_test::read_json(dir / "frf" / "frf.json");
+  EXPECT_EQ(json["method"], "periodic");
+  const nlohmann::json& p = json["periodic"];
+  EXPECT_EQ(p["source"], "r");
+  EXPECT_EQ(p["period_samples"], 2000);
+  EXPECT_EQ(p["periods_used"], 19);
+  EXPECT_EQ(p["lines_per_reference"]["r1"]["count"], 100);
+  EXPECT_EQ(p["lines_per_reference"]["r2"]["dft_lines"][0], 2);
+  // Exact lines: the analysis frequencies are the 200 excited lines, 5 Hz apart.
+  const auto f = json["frequency_hz"].get<std::vector<double>>();
+  ASSERT_EQ(f.size(), 200u);
+  const auto re = json["plant"]["x/u1"]["re"].get<std::vector<double>>();
+  const auto im = json["plant"]["x/u1"]["im"].get<std::vector<double>>();
+  double worst_magnitude = 0.0, worst_phase = 0.0;
+  for (std::size_t l = 0; l < f.size(); ++l) {
+    EXPECT_NEAR(f[l], 5.0 * static_cast<double>(l + 1), 1e-9);
+    if (f[l] >= 1000.0) continue;
+    const std::complex<double> G(re[l], im[l]), G0 = sampled_linear_plant(f[l], 1e-4)(0, 0);
+    worst_magnitude = std::max(worst_magnitude, std::abs(std::abs(G) / std::abs(G0) - 1.0));
+    worst_phase = std::max(worst_phase, std::abs(std::arg(G / G0)) * 180.0 / std::numbers::pi);
+  }
+  RecordProperty("foreign_x_u1_worst_magnitude_error", std::to_string(worst_magnitude));
+  RecordProperty("foreign_x_u1_worst_phase_error_deg", std::to_string(worst_phase));
+  EXPECT_LT(worst_magnitude, 0.01);
+  EXPECT_LT(worst_phase, 1.0);
+  check_unstable_pole(json);
 }
 
 // A copy of the experiment with its sidecar edited.

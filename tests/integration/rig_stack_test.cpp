@@ -17,12 +17,12 @@ namespace {
 using ::testing::HasSubstr;
 
 TEST(RigStack, CoilFaultOnTheBoardGivesErrorAlertThenStaleWhenTheBoardDies) {
-  const std::string config = std::string(AMBID_SOURCE_DIR) + "/deploy/config/";
+  const std::string config = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/";
   Stack stack("rig_stack", 185);
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
   stack.start_process(
-      "rig", {"rig-emulator", "--listen", "127.0.0.1:19185", "--scenario", config + "nominal-bearing.json", "--fault",
-              config + "coil1-hot.json", "--fault-at", "10", "--speed", "10"});
+      "rig", {"rig-emulator", "--listen", "127.0.0.1:19185", "--scenario", config + "quiet-bearing.json", "--fault",
+              config + "quiet-coil1-hot.json", "--fault-at", "10", "--speed", "10"});
   std::this_thread::sleep_for(std::chrono::seconds(1));
   const CommandResult swap = stack.ambid("source set rig 127.0.0.1:19185");
   ASSERT_EQ(swap.status, 0) << swap.output << stack.log("plant") << stack.log("rig");

@@ -29,7 +29,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 using namespace std::chrono_literals;
 
-const std::string nominal = std::string(AMBID_SOURCE_DIR) + "/deploy/config/nominal-bearing.json";
+const std::string nominal = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/quiet-bearing.json";
 
 std::size_t count_of(const std::string& text, const std::string& needle) {
   std::size_t n = 0;

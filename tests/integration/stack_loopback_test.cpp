@@ -29,14 +29,14 @@ TEST(StackLoopback, WholeStackAndOperatorCommandsSendNothingOffLoopback) {
     // At real time: the capture must see every packet of the sample stream (checked below).
     std::ofstream(stack.dir() / "plant.json")
         << R"({"source": "sim", "target": ")" << AMBID_SOURCE_DIR
-        << R"(/deploy/config/nominal-bearing.json", "batch_samples": 500, "speed": 1})";
+        << R"(/tests/integration/scenarios/quiet-bearing.json", "batch_samples": 500, "speed": 1})";
     for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
     std::this_thread::sleep_for(std::chrono::seconds(3));
     const CommandResult status = stack.ambid("status --wait 2");
     EXPECT_THAT(status.output, HasSubstr("identifier")) << status.output;
     EXPECT_THAT(status.output, HasSubstr("diagnostics")) << status.output;
-    const CommandResult swap =
-        stack.ambid("source set sim " + std::string(AMBID_SOURCE_DIR) + "/deploy/config/coil1-hot.json");
+    const CommandResult swap = stack.ambid("source set sim " + std::string(AMBID_SOURCE_DIR) +
+                                           "/tests/integration/scenarios/quiet-coil1-hot.json");
     EXPECT_EQ(swap.status, 0) << swap.output;
   }  // every daemon stopped (SIGTERM): their goodbyes are captured too
   std::this_thread::sleep_for(std::chrono::milliseconds(500));

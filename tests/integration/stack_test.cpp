@@ -1,6 +1,6 @@
 // The whole service as separate processes over DDS (loopback profile, one domain per test):
 // a simulated bearing, then its plant source swapped to the same bearing with R1 +20 %
-// (deploy/config/coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
+// (tests/integration/scenarios/quiet-coil1-hot.json); an operator's `ambid alerts` must see the ERROR alert about
 // coil 1 resistance, with the identified R1 of about 21 ohm, within a bounded time. Each test
 // takes 10-20 s.
 #include <gmock/gmock.h>
@@ -21,7 +21,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-const std::string coil1_hot = std::string(AMBID_SOURCE_DIR) + "/deploy/config/coil1-hot.json";
+const std::string coil1_hot = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/quiet-coil1-hot.json";
 
 void start_all(Stack& stack) {
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
@@ -123,6 +123,28 @@ TEST(Stack, IdentifierKilledAndRestartedGoesStaleThenOkTrendIntact) {
   EXPECT_NEAR(sum / double(after.size() - before.size()), 17.5, 0.025 * 17.5);
 }
 
+// Issue 18: a restarted plant daemon starts its clock at 0 again. The diagnostics daemon must
+// continue the history at once (it used to discard every model until the new plant time
+// passed the old maximum: minutes of a blind service at real time).
+TEST(Stack, APlantRestartContinuesTheHistory) {
+  Stack stack("stack_plant_restart", 187);
+  start_all(stack);
+  std::this_thread::sleep_for(std::chrono::seconds(8));  // ~80 s of plant time, baseline learned
+  const auto before = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  ASSERT_GT(before.size(), 40u) << stack.log("diagnostics");
+  stack.kill("plant");
+  stack.start("plant");
+  std::this_thread::sleep_for(std::chrono::seconds(5));  // ~50 s of new plant time, behind the old clock
+  const auto after = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
+  std::size_t continued = 0;
+  for (const auto& e : after) continued += e.time > before.back().time;
+  EXPECT_GT(continued, 20u) << "last time before the restart " << before.back().time << " s, after "
+                            << after.back().time << " s\n"
+                            << stack.log("diagnostics");
+  EXPECT_THAT(stack.log("diagnostics"), HasSubstr("plant restarted"));
+  for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
+}
+
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   Stack stack("stack_refusal", 174);
   stack.start("plant");
@@ -143,8 +165,13 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   EXPECT_EQ(diverging.status, 1) << diverging.output;
   EXPECT_THAT(diverging.output, HasSubstr("refused the source"));
   const CommandResult status = stack.ambid("status --wait 2");
-  EXPECT_THAT(status.output, HasSubstr("nominal-bearing.json"));
+  EXPECT_THAT(status.output, HasSubstr("quiet-bearing.json"));
   EXPECT_THAT(status.output, HasSubstr("rejected 4"));
+  // Only the plant runs: the stack's other roles are listed as lost (issue 18).
+  EXPECT_EQ(status.status, 4) << status.output;
+  EXPECT_THAT(status.output, HasSubstr("identifier (expected): LOST"));
+  EXPECT_THAT(status.output, HasSubstr("diagnostics (expected): LOST"));
+  EXPECT_EQ(stack.ambid("status --wait 2 --expect plant").status, 0);
 }
 
 // The frf daemon runs a multisine experiment through the plant daemon. The plant is open-loop

@@ -1,0 +1,29 @@
+#include "diagnostics/plant_families.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "plant_sim/families.hpp"
+
+namespace ambid::diag {
+namespace {
+
+// The families whose fault signatures monitor/fault_signatures.cpp derives.
+const std::vector<std::string>& families_with_fault_signatures() {
+  static const std::vector<std::string> names = {"amb1dof_voltage"};
+  return names;
+}
+
+}  // namespace
+
+void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece, const std::string& who) {
+  const sim::PlantFamily& family = sim::plant_family(model, who);
+  if (piece == DiagnosticsPiece::effect_catalogue && !family.effect_catalogue)
+    sim::family_lacks(family, "effect catalogue", who);
+  const auto& signed_families = families_with_fault_signatures();
+  if (piece == DiagnosticsPiece::fault_signatures &&
+      std::find(signed_families.begin(), signed_families.end(), model) == signed_families.end())
+    sim::family_lacks(family, "fault signatures (nor monitored parameters)", who);
+}
+
+}  // namespace ambid::diag

@@ -1,0 +1,20 @@
+#pragma once
+// What diagnostics has per plant family (the families themselves: plant_sim/families.hpp):
+// fault signatures and the monitored physical parameters (fault_signatures.hpp, diagnose) and
+// the effect catalogue the audit fits (plant_sim's, where the family has one). Callers ask here
+// and get a clear error naming the family and the piece it lacks; an unknown plant model is
+// refused with the list of known ones.
+#include <string>
+
+namespace ambid::diag {
+
+enum class DiagnosticsPiece {
+  fault_signatures,  // closed-loop fault signatures and monitored parameters (monitor/)
+  effect_catalogue,  // the audit's candidate extensions (audit/)
+};
+
+// Throws Error "WHO: unknown plant 'NAME' (known: ...)" or "WHO: plant model 'NAME' has no
+// PIECE yet" unless the family has the piece.
+void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece, const std::string& who);
+
+}  // namespace ambid::diag

@@ -1,0 +1,87 @@
+#include "identifier/families/maglev_identification.hpp"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.hpp"
+#include "identifier/families/maglev_greybox.hpp"
+
+namespace ambid::ident {
+namespace {
+
+const std::string kWho = "identify (maglev1coil_voltage)";
+
+double operating(const Experiment& e, const char* name) {
+  const auto it = e.operating_point.find(name);
+  if (it == e.operating_point.end()) throw Error(kWho + ": operating_point." + name + " is missing");
+  return it->second;
+}
+
+}  // namespace
+
+void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model& model) {
+  if (e.y_names != std::vector<std::string>{"x", "i"} || e.u_names != std::vector<std::string>{"u"})
+    throw Error(kWho + ": the grey-box fit needs signals y = [x, i] and u = [u]");
+  MaglevGreyBoxInput in;
+  in.sample_time = e.sample_time;
+  in.x = e.y.col(0);
+  in.i = e.y.col(1);
+  in.u = e.u.col(0);
+  in.x0 = operating(e, "x");
+  in.i0 = operating(e, "i");
+  in.nominal = e.plant.parameters;
+  const MaglevGreyBoxFit fit = fit_maglev_greybox(in);
+  const auto& v = fit.value;
+  const auto nominal = [&](const char* name) { return e.plant.parameters.at(name); };  // checked by the fit
+  const double kw = nominal("kw"), n_i = v.at("n_i"), n_x = v.at("n_x"), L = v.at("L"), R = v.at("R");
+  // Back-EMF constant closed like the force constant: Ke' = Ke / rho (Km' = Km / rho at the point).
+  const double Ke_closed = v.at("Ke") / v.at("rho");
+  const double emf = n_i * Ke_closed * std::pow(in.i0, n_i - 1.0) / (std::pow(in.x0, n_x) * L);
+  ContinuousSystem c;
+  c.A = Eigen::MatrixXd::Zero(3, 3);
+  c.A(0, 1) = 1.0;
+  c.A(1, 0) = v.at("stiffness");
+  c.A(1, 2) = -v.at("current_gain");
+  c.A(2, 1) = emf;
+  c.A(2, 2) = -R / L;
+  c.B = Eigen::Vector3d(0.0, 0.0, kw / L);
+  c.C = Eigen::MatrixXd::Zero(2, 3);
+  c.C(0, 0) = 1.0;
+  c.C(1, 2) = 1.0;
+  c.D = Eigen::MatrixXd::Zero(2, 1);
+  model.continuous = c;
+  model.discrete = c2d_zoh(c, e.sample_time);
+  model.parameters = {
+      {"a", v.at("stiffness")}, {"b", v.at("current_gain")}, {"R_over_L", R / L}, {"kw_over_L", kw / L}, {"emf", emf}};
+  model.uncertainty["a"] = fit.sigma.at("stiffness");
+  model.uncertainty["b"] = fit.sigma.at("current_gain");
+  for (const char* name : {"R", "L", "Ke", "Km", "n_i", "n_x", "rho", "unstable_pole"}) {
+    model.physical[name] = v.at(name);
+    model.uncertainty[name] = fit.sigma.at(name);
+  }
+  nlohmann::json& extra = model.extra.json();
+  const double m = nominal("m"), g = nominal("g"), Km = nominal("Km"), n_i0 = nominal("n_i"), n_x0 = nominal("n_x");
+  const double i_nominal = std::pow(m * g * std::pow(in.x0, n_x0) / Km, 1.0 / n_i0);
+  const bool measured =
+      e.extra.json().is_object() && e.extra.json().value("operating_point_source", std::string()) == "measured";
+  extra["operating_point"] = {{"source", measured ? "measured" : "nominal"},
+                              {"x", in.x0},
+                              {"i", in.i0},
+                              {"u", operating(e, "u")},
+                              {"nominal_equilibrium_current", i_nominal},
+                              {"nominal_equilibrium_input", nominal("R") * i_nominal / kw},
+                              {"current_ratio", in.i0 / i_nominal}};
+  extra["greybox"] = {{"window_samples", fit.window_samples},
+                      {"coil_residual_rms", fit.coil_residual_rms},
+                      {"body_residual_rms", fit.body_residual_rms},
+                      {"iterations", fit.iterations},
+                      {"taken_as_known", {"m", "g", "kw"}}};
+  if (!fit.unsupported.empty()) {
+    std::string list;
+    for (const auto& name : fit.unsupported) list += (list.empty() ? "" : ", ") + name;
+    extra["warnings"].push_back("the record does not support " + list + " (one sigma above half the value)");
+  }
+}
+
+}  // namespace ambid::ident

@@ -1,0 +1,36 @@
+// What diagnostics has per plant family: a piece a family lacks, or an unknown family, is a
+// clear error naming it.
+#include "diagnostics/plant_families.hpp"
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+
+namespace ambid::diag {
+namespace {
+
+std::string error_of(const std::string& model, DiagnosticsPiece piece) {
+  try {
+    require_diagnostics_piece(model, piece, "audit");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DiagnosticsFamilies, TheBearingHasEveryPiece) {
+  EXPECT_EQ(error_of("amb1dof_voltage", DiagnosticsPiece::effect_catalogue), "");
+  EXPECT_EQ(error_of("amb1dof_voltage", DiagnosticsPiece::fault_signatures), "");
+}
+
+TEST(DiagnosticsFamilies, MissingPiecesAndUnknownFamiliesAreNamed) {
+  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::effect_catalogue),
+            "audit: plant model 'maglev1coil_voltage' has no effect catalogue yet");
+  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::fault_signatures),
+            "audit: plant model 'maglev1coil_voltage' has no fault signatures (nor monitored parameters) yet");
+  EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::fault_signatures),
+            "audit: unknown plant 'lamstf' (known: amb1dof_voltage, maglev1coil_voltage)");
+}
+
+}  // namespace
+}  // namespace ambid::diag
