@@ -4,7 +4,7 @@
 // file anywhere downstream of the plant; a late identifier of the other vendor gets the
 // description; a swap to the other controller raises nothing, the same bearing with R1 +20 %
 // under the new loop an ERROR on coil 1; another bearing starts a new baseline and the alerts
-// say so; record -> replay -> identify keeps the description. Domains 179, 186..189; 10-50 s each.
+// say so; record -> replay -> identify keeps the description. Domains 164..168; 10-50 s each.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -90,7 +90,7 @@ void expect_no_alert(const Stack& stack) {
 class ReplayedController : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ReplayedController, IdentifiesAsOfflineOnTheSameWindowsWithoutAlert) {
-  Stack stack("description_" + GetParam(), GetParam() == "lqr" ? 186 : 187);
+  Stack stack("description_" + GetParam(), GetParam() == "lqr" ? 165 : 166);
   const std::string file = record(stack, GetParam());
   const std::vector<double> offline = offline_r1(file);
   // The method's accuracy on these windows: their mean R1 within 2.5 % of the truth.
@@ -109,7 +109,7 @@ TEST_P(ReplayedController, IdentifiesAsOfflineOnTheSameWindowsWithoutAlert) {
 INSTANTIATE_TEST_SUITE_P(Stack, ReplayedController, ::testing::Values("lqr", "pid"));
 
 TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultErrors) {
-  Stack stack("description_swap", 188, {{"plant", "fastdds"}, {"identifier", "cyclone"}, {"diagnostics", "fastdds"}});
+  Stack stack("description_swap", 167, {{"plant", "fastdds"}, {"identifier", "cyclone"}, {"diagnostics", "fastdds"}});
   const std::string lqr = record(stack, "lqr"), pid = record(stack, "pid");
   use_replay(stack, lqr);
   stack.start("diagnostics");
@@ -149,7 +149,7 @@ TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultEr
 
 // The same data under a sidecar whose nominal R1 is 21 ohm: another bearing for the plant id.
 TEST(DescriptionStack, AnotherBearingStartsANewBaselineAndTheAlertsSaySo) {
-  Stack stack("description_bearing", 189);
+  Stack stack("description_bearing", 168);
   const std::string lqr = record(stack, "lqr");
   nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(lqr));
   sidecar["plant"]["parameters"]["R1"] = 21.0;
@@ -170,7 +170,7 @@ TEST(DescriptionStack, AnotherBearingStartsANewBaselineAndTheAlertsSaySo) {
 // `ambid record` writes the description it received: the recording of a replayed pid loop has
 // the pid recording's description, and its windows identify as those of the original.
 TEST(DescriptionStack, RecordKeepsTheDescriptionReplayAndIdentifyGiveTheSameParameters) {
-  Stack stack("description_record", 179);
+  Stack stack("description_record", 164);
   const std::string pid = record(stack, "pid");
   use_replay(stack, pid);
   stack.start("plant");
