@@ -28,6 +28,7 @@
 #include "integration/stack_support.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/bus/make_bus.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/plant_samples.hpp"
 #include "services/daemons/scenario_json.hpp"
 
@@ -66,13 +67,21 @@ const std::vector<ambid::Experiment>& hot() {
 // The plant's side of the bus: batches of records with a continuous clock, as the plant daemon.
 class Plant {
  public:
-  explicit Plant(ambid::bus::Bus& bus) : samples_(bus.writer<ambid::bus::PlantSamples>()) {}
+  // The nominal and the hot records share one description (the sidecar keeps nominal values).
+  explicit Plant(ambid::bus::Bus& bus)
+      : samples_(bus.writer<ambid::bus::PlantSamples>()),
+        descriptions_(bus.writer<ambid::bus::PlantDescription>()),
+        description_(ambid::convert::describe(nominal().front(), "bearing-1")) {
+    descriptions_->write(description_);
+  }
   ambid::bus::Writer<ambid::bus::PlantSamples>& writer() { return *samples_; }
   // Publishes batch `seq` of `record`; returns the plant time after it.
   double publish(const ambid::Experiment& record, std::uint64_t seq) {
     const Eigen::Index begin = Eigen::Index(seq) * kBatch;
     if (seq == 0) offset_ = clock_ - record.t(0);
-    samples_->write(sample_batch(record, begin, kBatch, "bearing-1", seq, offset_));
+    ambid::bus::PlantSamples batch = sample_batch(record, begin, kBatch, "bearing-1", seq, offset_);
+    batch.description_id = description_.description_id;
+    samples_->write(batch);
     clock_ = record.t(begin + kBatch - 1) + offset_ + record.sample_time;
     return clock_;
   }
@@ -80,6 +89,8 @@ class Plant {
 
  private:
   std::unique_ptr<ambid::bus::Writer<ambid::bus::PlantSamples>> samples_;
+  std::unique_ptr<ambid::bus::Writer<ambid::bus::PlantDescription>> descriptions_;
+  ambid::bus::PlantDescription description_;
   double clock_ = 0.0, offset_ = 0.0;
 };
 

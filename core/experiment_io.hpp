@@ -33,9 +33,9 @@ struct ReadResult {
 // Throws Error whose message names the file, the row or key, and what was expected.
 ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions& options = {});
 
-// The sidecar alone (`path` names the .json, the .csv or the stem), an experiment without
-// samples: a template for `ambid import`. Errors name the file.
-Experiment read_experiment_sidecar(const std::filesystem::path& path);
+// The sidecar alone (`path` as above; no CSV is read): the plant description of
+// experiment-format.md, as an experiment without samples that passes validate_metadata().
+Experiment read_sidecar(const std::filesystem::path& path);
 
 // Writes `stem.csv` and `stem.json` (creating the parent directory); `stem` may carry either
 // extension or none. Validates first and writes nothing for an invalid experiment. Each file

@@ -115,6 +115,9 @@ class TrendStore {
                                              double to = std::numeric_limits<double>::infinity()) const;
   std::vector<Alert> latest_alerts(std::size_t limit, const std::optional<std::string>& plant_id = {}) const;
   std::optional<Baseline> baseline(const std::string& plant_id, const std::string& parameter) const;
+  // Removes every baseline of the plant (another bearing under the same plant id: they are
+  // learned again); returns how many. History and alerts stay.
+  std::size_t forget_baselines(const std::string& plant_id);
 
   // Applies the policy in one transaction.
   RetentionReport apply_retention(const RetentionPolicy& policy, double now);

@@ -64,13 +64,15 @@ ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions&
   return result;
 }
 
-Experiment read_experiment_sidecar(const std::filesystem::path& path) {
+Experiment read_sidecar(const std::filesystem::path& path) {
   const ExperimentFiles files = files_of(path);
-  const std::string text = read_text_file(files.json);
-  std::vector<std::string> warnings;
+  const std::string sidecar_text = read_json_file(files.json);
   Experiment e;
-  in_file(files.json, warnings,
-          [&](std::vector<std::string>& local) { e = parse_sidecar(parse_sidecar_text(text), local); });
+  std::vector<std::string> warnings;  // a sidecar alone has no CSV columns to warn about
+  in_file(files.json, warnings, [&](std::vector<std::string>& w) {
+    e = parse_sidecar(parse_sidecar_text(sidecar_text), w);
+    e.validate_metadata();
+  });
   return e;
 }
 

@@ -186,6 +186,7 @@ struct TrendStore::Impl {
       "SELECT mean, extra_spread, mean_sigma, reported_sigma, windows, origin FROM baselines "
       "WHERE plant_id = ? AND parameter = ?",
       "read baseline"};
+  sqlite::Statement delete_baselines{db, "DELETE FROM baselines WHERE plant_id = ?", "remove baselines"};
   sqlite::Statement delete_old_estimates{db, "DELETE FROM estimates WHERE time < ?", "remove old estimates"};
   // Buckets are whole multiples of the bucket length; a bucket already stored (a run of
   // retention that cut through it) is merged, not replaced.
@@ -308,6 +309,11 @@ std::optional<Baseline> TrendStore::baseline(const std::string& plant_id, const 
   b.origin = parse_baseline_origin(run.column_text(5));
   b.validate();
   return b;
+}
+
+std::size_t TrendStore::forget_baselines(const std::string& plant_id) {
+  impl_->delete_baselines.run().bind(1, plant_id).execute();
+  return std::size_t(impl_->db.changes());
 }
 
 RetentionReport TrendStore::apply_retention(const RetentionPolicy& policy, double now) {

@@ -11,6 +11,7 @@
 // (ambid::NAMEPubSubType, ambid_NAME_desc), which only token pasting can derive.
 #define AMBID_BUS_MESSAGES(X)                                   \
   X(PlantSamples, "ambid/plant_samples", samples)               \
+  X(PlantDescription, "ambid/plant_description", description)   \
   X(ExcitationCommand, "ambid/excitation_command", commands)    \
   X(PlantSourceCommand, "ambid/plant_source_command", commands) \
   X(PlantSourceState, "ambid/plant_source_state", state)        \

@@ -58,9 +58,33 @@ struct PlantSamples {
   double t0 = 0.0;
   double sample_time = 0.0;
   std::uint32_t count = 0;
+  std::string description_id;  // the PlantDescription these samples belong to
   std::vector<std::string> y_names, u_names, r_names;
   std::vector<double> y, u, r;  // row-major: count x names.size()
   bool operator==(const PlantSamples&) const = default;
+};
+
+struct ControllerDescription {
+  std::string kind;
+  double sample_time = 0.0;
+  std::vector<std::string> inputs, outputs;
+  StateSpace matrices;
+  Matrix initial_state;                // states x 1, or 0 x 0 for zero
+  Matrix output_limits, state_limits;  // n x 2 of [lo, hi]; 0 x 2 when none
+  bool operator==(const ControllerDescription&) const = default;
+};
+
+struct PlantDescription {
+  std::string plant_id;
+  std::string description_id;  // hash of the content (services/convert/plant_description.hpp)
+  std::string model;
+  std::vector<NamedValue> parameters;  // nominal
+  double sample_time = 0.0;
+  std::vector<std::string> y_names, u_names, r_names;
+  std::vector<NamedValue> operating_point;
+  bool has_controller = false;
+  ControllerDescription controller;
+  bool operator==(const PlantDescription&) const = default;
 };
 
 struct ExcitationCommand {

@@ -11,8 +11,10 @@ namespace ambid::bus {
 // commands: volatile (a late joiner must not act on old commands)
 // state:    transient-local: a late subscriber gets the current state (models, alerts, ...)
 // health:   transient-local, deadline and liveliness
+// description: transient-local, keep-last 1 per instance: a late subscriber gets the current
+//           plant description of every plant, and only that
 // Which message uses which profile: message_list.hpp.
-enum class Profile { samples, commands, state, health };
+enum class Profile { samples, commands, state, health, description };
 
 struct Qos {
   bool transient_local = false;             // else VOLATILE

@@ -108,9 +108,30 @@ void signal_group(const Checker& check, std::string_view group, const PlantSampl
 void validate(const PlantSamples& m) {
   const Checker check("PlantSamples");
   check.text("plant_id", m.plant_id, limits::id_length);
+  check.text("description_id", m.description_id, limits::id_length);
   signal_group(check, "y", m, m.y_names, m.y);
   signal_group(check, "u", m, m.u_names, m.u);
   signal_group(check, "r", m, m.r_names, m.r);
+}
+
+void validate(const PlantDescription& m) {
+  const Checker check("PlantDescription");
+  check.text("plant_id", m.plant_id, limits::id_length);
+  check.text("description_id", m.description_id, limits::id_length);
+  check.text("model", m.model, limits::name_length);
+  check.named("parameters", m.parameters, limits::max_parameters);
+  check.texts("y_names", m.y_names, limits::max_channels, limits::name_length);
+  check.texts("u_names", m.u_names, limits::max_channels, limits::name_length);
+  check.texts("r_names", m.r_names, limits::max_channels, limits::name_length);
+  check.named("operating_point", m.operating_point, limits::max_parameters);
+  const ControllerDescription& c = m.controller;
+  check.text("controller.kind", c.kind, limits::name_length);
+  check.texts("controller.inputs", c.inputs, limits::max_channels, limits::name_length);
+  check.texts("controller.outputs", c.outputs, limits::max_channels, limits::name_length);
+  check.state_space("controller.matrices", c.matrices);
+  check.matrix("controller.initial_state", c.initial_state);
+  check.matrix("controller.output_limits", c.output_limits);
+  check.matrix("controller.state_limits", c.state_limits);
 }
 
 void validate(const ExcitationCommand& m) {

@@ -65,7 +65,7 @@ void add_import_command(CLI::App& app) {
   cmd->callback([args] {
     Progress progress("ambid import", args->quiet);
     ImportOptions options = args->options;
-    if (!args->template_file.empty()) options.template_sidecar = read_experiment_sidecar(args->template_file);
+    if (!args->template_file.empty()) options.template_sidecar = read_sidecar(args->template_file);
     progress.update("read and convert " + args->file, 0, 2);
     const ImportResult result = import_experiment(args->file, mapping_of(*args), options);
     progress.update("write " + args->out, 1, 2);

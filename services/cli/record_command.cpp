@@ -1,35 +1,30 @@
 // `ambid record --out STEM --duration S`: records the plant's samples from the bus into an
-// experiment file. The sidecar's plant description and controller are not on the bus: they
-// come from the nominal scenario the plant runs under (--scenario; default the built-in one).
-#include <cmath>
+// experiment file. The sidecar is the plant description the samples name (PlantDescription on
+// the bus): a recording replays with the controller and nominal parameters it was made with.
 #include <iostream>
 #include <memory>
 
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "services/cli/operator_commands.hpp"
-#include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_options.hpp"
-#include "services/daemons/scenario_json.hpp"
+#include "services/daemons/described_windows.hpp"
 
 namespace ambid::cli {
 namespace {
 
 struct RecordArguments {
   daemons::BusOptions bus;
-  std::string out, scenario;
+  std::string out;
   double duration = 1.0, timeout = 30.0;
 };
 
 void run(const RecordArguments& args) {
-  sim::ScenarioOptions o = args.scenario.empty() ? sim::ScenarioOptions{} : daemons::read_scenario_file(args.scenario);
-  o.true_parameters.clear();
-  Experiment header = sim::build_scenario(o).header;
-  header.name = "recorded " + args.bus.plant_id;
   if (!(args.duration > 0)) throw Error("--duration must be > 0 s");
-  convert::SampleWindow window(header, Eigen::Index(std::llround(args.duration / header.sample_time)));
+  daemons::DescribedWindows window({.window = args.duration});
   auto bus = args.bus.connect();
   auto samples = bus->reader<bus::PlantSamples>();
+  auto descriptions = bus->reader<bus::PlantDescription>();
   std::uint64_t rejected = 0;
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.timeout);
   while (!window.full()) {
@@ -37,11 +32,15 @@ void run(const RecordArguments& args) {
       throw Error("recorded only " + std::to_string(window.buffered()) + " consecutive samples within " +
                   std::to_string(args.timeout) + " s");
     bus->wait(std::chrono::milliseconds(100));
-    for (const auto& b : samples->take())
-      if (b.plant_id == args.bus.plant_id && window.add(b).outcome == convert::SampleWindow::Outcome::rejected)
-        ++rejected;
+    for (const auto& d : descriptions->take())
+      if (d.plant_id == args.bus.plant_id) window.describe(d);
+    for (const auto& b : samples->take()) {
+      if (b.plant_id != args.bus.plant_id) continue;
+      for (const auto& step : window.add(b)) rejected += step.event == daemons::DescribedWindows::Event::rejected;
+    }
   }
-  const Experiment e = window.take();
+  Experiment e = window.take();
+  e.name = "recorded " + args.bus.plant_id;
   write_experiment(e, args.out);
   std::cout << "ambid record: " << e.samples() << " samples from t=" << e.t(0) << " s to " << args.out << ".csv/.json"
             << (rejected ? ", " + std::to_string(rejected) + " malformed batches skipped" : "") << std::endl;
@@ -55,7 +54,6 @@ void add_record_command(CLI::App& app) {
   daemons::add_bus_options(*c, args->bus);
   c->add_option("--out", args->out, "output stem: writes STEM.csv and STEM.json")->required();
   c->add_option("--duration", args->duration, "seconds of consecutive samples")->capture_default_str();
-  c->add_option("--scenario", args->scenario, "the plant's scenario file (nominal plant and controller)");
   c->add_option("--timeout", args->timeout, "give up after this many seconds")->capture_default_str();
   c->callback([args] { run(*args); });
 }

@@ -1,7 +1,8 @@
 // `ambid status`: what the running service says about itself: each daemon's latest Health and
-// the plant's current source, collected for --wait seconds. A daemon that died leaves nothing
-// on the bus (its transient-local Health goes with it), so the roles the operator expects are
-// named (--expect) and each one without a live daemon is listed as LOST, exit 4.
+// the plant's current source and plant description (id, plant family, controller kind),
+// collected for --wait seconds. A daemon that died leaves nothing on the bus (its
+// transient-local Health goes with it), so the roles the operator expects are named (--expect)
+// and each one without a live daemon is listed as LOST, exit 4.
 #include <chrono>
 #include <iostream>
 #include <map>
@@ -13,6 +14,7 @@
 
 #include "services/cli/operator_commands.hpp"
 #include "services/convert/alert.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_options.hpp"
 
@@ -41,12 +43,15 @@ void run(const StatusArguments& args) {
   std::map<std::string, bus::PlantSourceState> plants;
   auto responses = bus->reader<bus::FrequencyResponse>();
   std::map<std::string, bus::FrequencyResponse> frfs;
+  auto descriptions = bus->reader<bus::PlantDescription>();
+  std::map<std::string, bus::PlantDescription> described;
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(args.wait);
   while (std::chrono::steady_clock::now() < end) {
     bus->wait(std::chrono::milliseconds(100));
     for (const auto& h : health->take()) nodes[h.node] = h;
     for (const auto& s : sources->take()) plants[s.plant_id] = s;
     for (const auto& r : responses->take()) frfs[r.plant_id] = r;
+    for (const auto& d : descriptions->take()) described[d.plant_id] = d;
   }
   if (nodes.empty() && plants.empty()) {
     std::cout << "no daemon answered on domain " << args.bus.domain << " within " << args.wait << " s" << std::endl;
@@ -58,6 +63,9 @@ void run(const StatusArguments& args) {
               << (s.command_accepted ? (s.message.empty() ? "" : " (" + s.message + ")")
                                      : " (last command refused: " + s.message + ")")
               << "\n";
+  for (const auto& [id, d] : described)
+    std::cout << "plant " << id << ": description " << d.description_id << ", plant " << d.model << ", controller "
+              << convert::controller_summary(d) << "\n";
   constexpr const char* zones = "-ABCD";
   for (const auto& [id, r] : frfs) {
     std::cout << "plant " << id << ": frequency response at plant time " << r.time << " s, " << r.frequencies.size()

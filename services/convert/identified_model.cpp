@@ -1,9 +1,6 @@
 #include "services/convert/identified_model.hpp"
 
-#include <algorithm>
 #include <vector>
-
-#include "diagnostics/fault_isolation.hpp"
 
 namespace ambid::convert {
 namespace {
@@ -47,18 +44,6 @@ bus::IdentifiedModel to_message(const ident::WindowIdentification& identified, c
   m.physical = to_message(identified.physical);
   for (const auto& [output, nrmse] : id.fit_nrmse) m.nrmse.push_back({output, nrmse});
   return m;
-}
-
-diag::EstimateWindow estimate_window(const bus::IdentifiedModel& model, diag::Source source) {
-  const std::vector<std::string>& monitored = diag::monitored_amb1dof_parameters();
-  diag::EstimateWindow w;
-  w.time = model.time;
-  w.plant_id = model.plant_id;
-  w.source = source;
-  for (const bus::Estimate& e : model.physical)
-    if (std::find(monitored.begin(), monitored.end(), e.name) != monitored.end())
-      w.estimates.push_back({e.name, e.value, e.sigma});
-  return w;
 }
 
 }  // namespace ambid::convert

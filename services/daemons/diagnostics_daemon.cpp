@@ -2,16 +2,20 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
+#include "diagnostics/fault_signatures.hpp"
 #include "services/convert/alert.hpp"
-#include "services/convert/identified_model.hpp"
+#include "services/convert/estimate_window.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/description_change.hpp"
 #include "services/daemons/plant_time.hpp"
 #include "services/daemons/window_failures.hpp"
 
@@ -54,12 +58,13 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
 int run_diagnostics_daemon(const DaemonOptions& options) {
   const DiagnosticsConfig config = diagnostics_config(load_config(options.config));
   diag::TrendStore store(config.store);
-  diag::DiagnosticsEngine engine(store, config.engine);
+  auto engine = std::make_unique<diag::DiagnosticsEngine>(store, config.engine);
 
   auto bus = options.connect();
   DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics", options.metrics_port);
   auto models = bus->reader<bus::IdentifiedModel>();
   auto sources = bus->reader<bus::PlantSourceState>();
+  auto descriptions = bus->reader<bus::PlantDescription>();
   auto health = bus->reader<bus::Health>();
   auto alerts = bus->writer<bus::Alert>();
   runtime.ready("trend store " + config.store);
@@ -75,6 +80,39 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       alerts_by_level.at(a.level)->Increment();
       runtime.log(std::string(diag::to_string(a.level)) + " " + a.parameter + ": " + a.message);
     }
+  };
+  std::optional<bus::PlantDescription> loop;  // the description in force
+  // A new loop or bearing (description_change.hpp): the engine starts again with the fault
+  // signatures of the new loop, from the stored baselines, or from none for another bearing.
+  auto describe = [&](const bus::PlantDescription& d, double time) {
+    const DescriptionChange change = classify(loop ? &*loop : nullptr, d);
+    if (change == DescriptionChange::same) return;
+    diag::EngineConfig c = config.engine;
+    try {
+      c.isolation.hypotheses = diag::closed_loop_fault_hypotheses(convert::experiment_header(d));
+    } catch (const Error& e) {
+      runtime.metrics.rejected.Increment();
+      runtime.log("plant description " + d.description_id + ": no fault signatures of its loop (" + e.what() +
+                  "); those of the default loop instead");
+    }
+    if (change == DescriptionChange::bearing) {
+      const std::size_t forgotten = store.forget_baselines(d.plant_id);
+      bus::Alert a;
+      a.plant_id = d.plant_id;
+      a.fault = "new_bearing";
+      a.time = time;
+      a.message = ("another bearing (" + bearing_difference(*loop, d) + "): " + std::to_string(forgotten) +
+                   " baselines dropped, learned again")
+                      .substr(0, bus::limits::text_length);
+      alerts->write(a);
+      runtime.metrics.published.Increment();
+      runtime.log(a.message);
+    } else if (change == DescriptionChange::controller) {
+      runtime.log("plant description " + d.description_id + ": the same bearing in another loop (controller " +
+                  convert::controller_summary(d) + "); fault signatures recomputed, baselines kept");
+    }
+    engine = std::make_unique<diag::DiagnosticsEngine>(store, c);
+    loop = d;
   };
   diag::Source source = diag::Source::sim;
   PlantTime plant_time;
@@ -100,12 +138,14 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : sources->take())
       if (s.plant_id == options.plant_id) source = convert::to_source(s.kind);
+    for (const bus::PlantDescription& d : descriptions->take())
+      if (d.plant_id == options.plant_id) describe(d, plant_time.last().value_or(0.0));
     for (const bus::Health& h : health->take()) {
       if (h.node != options.plant_id + "/identifier") continue;
       const bool failing = reports_failing_windows(h, options.plant_id);
       // On the edge only: the next identified window brings the parameters back to OK.
       if (failing && !identifier_failing)
-        publish(engine.mark_stale(options.plant_id, plant_time.last().value_or(0.0), "the identifier's " + h.message));
+        publish(engine->mark_stale(options.plant_id, plant_time.last().value_or(0.0), "the identifier's " + h.message));
       identifier_failing = failing;
     }
     for (const bus::IdentifiedModel& m : models->take()) {
@@ -122,7 +162,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       try {
         diag::EstimateWindow window = convert::estimate_window(m, source);
         window.time = at->time;
-        publish(engine.process(window));
+        publish(engine->process(window));
         retain(at->time);
         last_model = std::chrono::steady_clock::now();
         stale = false;
@@ -136,7 +176,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       silent = silent || e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched;
     if (silent && plant_time.last() && !stale) {
       // The engine's clock is the plant's: the source went silent after the last model.
-      publish(engine.check_stale(std::nextafter(*plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
+      publish(engine->check_stale(std::nextafter(*plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
       stale = true;
     }
   }

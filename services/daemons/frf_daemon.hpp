@@ -6,8 +6,8 @@
 // again. Repeats every `interval` seconds (0: once).
 //
 // Config (JSON, every key optional):
-//   {"scenario": FILE (nominal plant and controller, as for the identifier; its duration is
-//    the plant's record length, the length of one experiment),
+//   {"duration": 1.0 (s analysed: the plant's record length; the samples are read with the plant
+//    description they name, as by the identifier; the analysis keeps f_min..f_max),
 //    "excitation": "multisine", "amplitude": 0.05, "f_min": 1, "f_max": 1000,
 //    "interval": 0,
 //    "restore_excitation": "prbs", "restore_amplitude": 0.05}

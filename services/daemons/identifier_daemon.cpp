@@ -5,37 +5,33 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "services/convert/plant_samples.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
-#include "services/daemons/scenario_json.hpp"
 #include "services/daemons/window_failures.hpp"
+#include "services/daemons/window_steps.hpp"
 
 namespace ambid::daemons {
 namespace {
 
 struct IdentifierConfig {
-  sim::ScenarioOptions scenario;
-  double window = 0.25;
-  double settle = 0.25;
+  WindowSettings windows{.window = 0.25, .settle = 0.25};
   ident::IdentifyOptions identify = window_identify_options(kDefaultWindowMethod);
   WindowFailureRule failures;
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "identifier config",
-                      {"scenario", "method", "window", "settle", "transient_samples", "failing_consecutive",
-                       "failing_recent", "failing_fraction"});
+  reject_unknown_keys(
+      j, "identifier config",
+      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent", "failing_fraction"});
   IdentifierConfig c;
-  if (const std::string file = config_value<std::string>(j, "scenario", ""); !file.empty())
-    c.scenario = read_scenario_file(file);
-  c.scenario.true_parameters.clear();
-  c.window = config_value(j, "window", c.window);
-  c.settle = config_value(j, "settle", c.settle);
-  if (!(c.settle >= 0)) throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.settle));
+  c.windows.window = config_value(j, "window", c.windows.window);
+  c.windows.settle = config_value(j, "settle", c.windows.settle);
+  if (!(c.windows.settle >= 0))
+    throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.windows.settle));
   c.identify = window_identify_options(config_value<std::string>(j, "method", kDefaultWindowMethod),
                                        Eigen::Index(config_value(j, "transient_samples", 0)));
-  if (!(c.window > 0)) throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.window));
+  if (!(c.windows.window > 0))
+    throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.windows.window));
   // Signed, so that a negative value is named instead of wrapping around.
   const auto count = [&](const char* key, std::size_t fallback) {
     const int n = config_value(j, key, int(fallback));
@@ -53,14 +49,12 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
 
 int run_identifier_daemon(const DaemonOptions& options) {
   const IdentifierConfig config = identifier_config(load_config(options.config));
-  const sim::Scenario scenario = sim::build_scenario(config.scenario);
-  const auto window_samples = Eigen::Index(std::llround(config.window / scenario.header.sample_time));
-  convert::SampleWindow window(scenario.header, window_samples,
-                               Eigen::Index(std::llround(config.settle / scenario.header.sample_time)));
+  DescribedWindows window(config.windows);
 
   auto bus = options.connect();
   DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
   auto samples = bus->reader<bus::PlantSamples>();
+  auto descriptions = bus->reader<bus::PlantDescription>();
   auto models = bus->writer<bus::IdentifiedModel>();
   prometheus::Histogram& identification_seconds =
       runtime.metrics.histogram("ambid_identification_seconds", "wall time of one window's identification",
@@ -70,35 +64,23 @@ int run_identifier_daemon(const DaemonOptions& options) {
   // Samples that never reach an identification, by why: a refused batch, the partial window
   // a sequence gap or a record's end discards, a window the method could not identify.
   const std::string dropped_help = "samples that reached no identification";
-  prometheus::Counter& dropped_rejected =
-      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "rejected"}});
-  prometheus::Counter& dropped_gap =
-      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "gap"}});
-  prometheus::Counter& dropped_record_end =
-      runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "record_end"}});
   prometheus::Counter& dropped_unidentified =
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
+  WindowSteps steps(runtime, dropped_help);
   WindowFailures failures(config.failures, runtime.metrics);
-  runtime.ready("windows of " + std::to_string(window_samples) + " samples, method " + config.identify.method);
+  runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
+                "; plant description from the bus");
   WindowIdentifier identifier(config.identify);
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
+    for (const bus::PlantDescription& d : descriptions->take())
+      if (d.plant_id == options.plant_id) steps.describe(window, d);
     for (const bus::PlantSamples& batch : samples->take()) {
       if (batch.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
-      const Eigen::Index buffered = window.buffered();
-      const convert::SampleWindow::Result r = window.add(batch);
-      if (r.outcome == convert::SampleWindow::Outcome::rejected) {
-        runtime.metrics.rejected.Increment();
-        dropped_rejected.Increment(double(batch.count));
-        runtime.log("batch " + std::to_string(batch.seq) + " rejected: " + r.reason);
-        runtime.set_health(bus::AlertLevel::warn, "samples rejected: " + r.reason);
-      } else if (r.outcome == convert::SampleWindow::Outcome::restarted && buffered > 0) {
-        (batch.seq == 0 ? dropped_record_end : dropped_gap).Increment(double(buffered));
-        if (batch.seq != 0) runtime.log(std::to_string(buffered) + " samples dropped: " + r.reason);
-      }
+      steps.report(window.add(batch));
       while (window.full()) {
         const Experiment w = window.take();
         try {

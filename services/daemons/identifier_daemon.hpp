@@ -1,12 +1,11 @@
 #pragma once
 // `ambid daemon identifier`: collects the plant's samples into windows (services/convert/plant_samples.hpp) and
-// publishes the identified model of each (identify_window.hpp). It needs the plant's nominal
-// description and controller, which are not on the bus: they come from the scenario file the
-// plant runs under (the nominal one; its true_parameters are ignored).
+// publishes the identified model of each (identify_window.hpp). Each window is read with the
+// plant description its samples name (PlantDescription on the bus, described_windows.hpp):
+// model, nominal parameters, signals, operating point and controller come with the data.
 //
 // Config (JSON, every key optional):
-//   {"scenario": FILE (default: the built-in nominal amb1dof_voltage scenario),
-//    "method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
+//   {"method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
 //    listed by `ambid daemon identifier --help`; an unknown name is refused at start),
 //    "window": 0.25 (s of samples per identification),
 //    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal

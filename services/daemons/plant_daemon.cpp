@@ -6,10 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/experiment_io.hpp"
+#include "services/convert/plant_description.hpp"
 #include "services/convert/plant_samples.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/plant_source.hpp"
+#include "services/daemons/rig_source.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -22,12 +25,13 @@ struct PlantConfig {
   double max_amplitude = 0.5;
   double max_frequency = 2000.0;
   RigSettings rig;
+  std::string rig_description;  // sidecar JSON: the plant description of the rig's board
 };
 
 PlantConfig plant_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "plant config",
                       {"source", "target", "batch_samples", "speed", "max_amplitude", "max_frequency", "rig_silence",
-                       "rig_reply_timeout", "rig_allow_remote"});
+                       "rig_reply_timeout", "rig_allow_remote", "rig_description"});
   PlantConfig c;
   c.kind = convert::parse_source_kind(config_value<std::string>(j, "source", "sim"));
   c.target = config_value<std::string>(j, "target", "");
@@ -38,6 +42,7 @@ PlantConfig plant_config(const nlohmann::json& j) {
   c.rig.silence = config_value(j, "rig_silence", c.rig.silence);
   c.rig.reply_timeout = config_value(j, "rig_reply_timeout", c.rig.reply_timeout);
   c.rig.allow_remote = config_value(j, "rig_allow_remote", c.rig.allow_remote);
+  c.rig_description = config_value<std::string>(j, "rig_description", "");
   if (!(c.rig.silence > 0))
     throw Error("plant config: rig_silence must be > 0 s, got " + std::to_string(c.rig.silence));
   if (!(c.rig.reply_timeout > 0))
@@ -70,9 +75,11 @@ class PlantDaemon {
         bus_(o.connect()),
         runtime_(*bus_, "plant", o.plant_id + "/plant", o.metrics_port),
         samples_(bus_->writer<bus::PlantSamples>()),
+        descriptions_(bus_->writer<bus::PlantDescription>()),
         state_(bus_->writer<bus::PlantSourceState>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
+        rig_description_(c.rig_description.empty() ? std::nullopt : std::optional(read_sidecar(c.rig_description))),
         source_(make_plant_source(c.kind, c.target, context())) {}
 
   int run() {
@@ -116,16 +123,41 @@ class PlantDaemon {
       if (!rows) return;
       record_ = std::move(rows->rows);
       row_ = 0;
+      try {
+        publish_description();
+      } catch (const Error& e) {
+        source_failed(e.what());
+        return;
+      }
       if (rows->starts_record) {
         record_offset_ = clock_ - record_.t(0);
         seq_ = 0;
       }
     }
     const Eigen::Index count = std::min(config_.batch_samples, record_.samples() - row_);
-    samples_->write(convert::sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_));
+    bus::PlantSamples batch = convert::sample_batch(record_, row_, count, options_.plant_id, seq_++, record_offset_);
+    batch.description_id = description_.description_id;
+    samples_->write(batch);
     runtime_.metrics.published.Increment();
     row_ += count;
     clock_ = record_.t(row_ - 1) + record_offset_ + record_.sample_time;
+  }
+
+  // The description of the rows just taken (a rig's from the configured file); written when it
+  // differs from the last one. Error when the source's rows cannot be described.
+  void publish_description() {
+    if (source_->kind() == bus::SourceKind::rig) {
+      if (!rig_description_)
+        throw Error("a rig's samples need a plant description: name its sidecar in the plant config (rig_description)");
+      record_ = with_description(std::move(record_), *rig_description_);
+    }
+    bus::PlantDescription d = convert::describe(record_, options_.plant_id);
+    if (d.description_id == description_.description_id) return;
+    descriptions_->write(d);
+    runtime_.metrics.published.Increment();
+    runtime_.log("plant description " + d.description_id + " (" + d.model + ", controller " +
+                 convert::controller_summary(d) + ")");
+    description_ = std::move(d);
   }
 
   void handle_commands() {
@@ -207,9 +239,12 @@ class PlantDaemon {
   std::unique_ptr<bus::Bus> bus_;
   DaemonRuntime runtime_;
   std::unique_ptr<bus::Writer<bus::PlantSamples>> samples_;
+  std::unique_ptr<bus::Writer<bus::PlantDescription>> descriptions_;
   std::unique_ptr<bus::Writer<bus::PlantSourceState>> state_;
   std::unique_ptr<bus::Reader<bus::PlantSourceCommand>> source_commands_;
   std::unique_ptr<bus::Reader<bus::ExcitationCommand>> excitation_commands_;
+  std::optional<Experiment> rig_description_;
+  bus::PlantDescription description_;      // the last one written
   std::unique_ptr<PlantSource> source_;    // null after a failure with nothing to fall back to
   std::unique_ptr<PlantSource> previous_;  // the source before the last swap (the fallback)
   Experiment record_;

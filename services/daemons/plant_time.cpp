@@ -5,8 +5,10 @@
 namespace ambid::daemons {
 namespace {
 
-// Far more than a transient-local history holds (8 models, services/bus/qos.cpp).
-constexpr std::size_t kRemembered = 256;
+// Twice what a transient-local history can replay (8 models, the state profile in
+// services/bus/qos.cpp). No more: a restarted plant's windows end at the same times as the
+// old epoch's first ones, which must not look like replays.
+constexpr std::size_t kRemembered = 16;
 
 }  // namespace
 

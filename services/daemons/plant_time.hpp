@@ -3,8 +3,8 @@
 //
 // Models arrive with the plant's time. A model at or before the last one processed is either
 // a replay of the transient-local history (a late joiner or a reconnect sees the last models
-// again: exactly the times already seen) or the first model of a restarted plant daemon, whose
-// clock starts at 0 again (a time never seen). A replay is skipped; a restart starts a new
+// again: exactly the times of the newest few) or the first model of a restarted plant daemon,
+// whose clock starts at 0 again (a time not among the newest few). A replay is skipped; a restart starts a new
 // epoch placed one window after the last model, so the trend history continues at once instead
 // of every model being discarded until the new clock passes the old maximum.
 #include <deque>

@@ -292,6 +292,24 @@ class RigSource : public PlantSource {
 
 }  // namespace
 
+Experiment with_description(Experiment rows, Experiment description) {
+  const auto names = [](const Experiment& e) {
+    std::string s;
+    for (const auto& n : e.signal_names()) s += (s.empty() ? "" : ", ") + n;
+    return e.plant.model + " (" + s + ") at " + std::to_string(e.sample_time) + " s";
+  };
+  if (rows.plant.model != description.plant.model || rows.y_names != description.y_names ||
+      rows.u_names != description.u_names || rows.r_names != description.r_names ||
+      !(std::abs(rows.sample_time - description.sample_time) <= kSamplingTolerance * description.sample_time))
+    throw Error("the rig sends " + names(rows) + " but its description (rig_description) has " + names(description));
+  description.name = rows.name;
+  description.t = std::move(rows.t);
+  description.y = std::move(rows.y);
+  description.u = std::move(rows.u);
+  description.r = std::move(rows.r);
+  return description;
+}
+
 std::unique_ptr<PlantSource> make_rig_source(const std::string& address, const SourceContext& context) {
   // Checked before a socket exists: nothing is sent off loopback unless the config allows it.
   if (!rig::parse_endpoint(address).loopback() && !context.rig.allow_remote)

@@ -9,9 +9,15 @@
 #include <memory>
 #include <string>
 
+#include "core/experiment.hpp"
 #include "services/daemons/plant_source.hpp"
 
 namespace ambid::daemons {
+
+// The rows of a rig read with the plant description the plant config names (rig_description,
+// a sidecar: the board's controller, nominal parameters, operating point). Throws Error when
+// the board's model, signal names or sample time differ from the description's.
+Experiment with_description(Experiment rows, Experiment description);
 
 // Throws Error when the address is malformed, not numeric, off loopback without
 // allow_remote, or the rig does not answer HELLO.

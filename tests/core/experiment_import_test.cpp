@@ -65,7 +65,7 @@ class ImportExperiment : public ::testing::Test {
            ("ambid-import-test-" + std::string(info->name()) + "-" + std::to_string(std::random_device{}()));
     fs::create_directories(dir_);
     write_experiment(original_, dir_ / "original");
-    options_.template_sidecar = read_experiment_sidecar(dir_ / "original.json");
+    options_.template_sidecar = read_sidecar(dir_ / "original.json");
   }
   void TearDown() override { fs::remove_all(dir_); }
 

@@ -15,7 +15,7 @@
 #include "core/json_text.hpp"
 #include "fuzz/mutator.hpp"
 #include "plant_sim/scenario.hpp"
-#include "services/convert/identified_model.hpp"
+#include "services/convert/estimate_window.hpp"
 #include "services/convert/plant_samples.hpp"
 #include "services/daemons/scenario_json.hpp"
 

@@ -53,6 +53,7 @@ PlantSamples largest<PlantSamples>() {
           .t0 = 12.5,
           .sample_time = 1e-4,
           .count = static_cast<std::uint32_t>(count),
+          .description_id = text_of_length(limits::id_length, 'D'),
           .y_names = names(limits::max_channels, 'a'),
           .u_names = names(limits::max_channels, 'b'),
           .r_names = names(limits::max_channels, 'c'),
@@ -68,12 +69,59 @@ PlantSamples small<PlantSamples>(int k) {
           .t0 = 0.01 * k,
           .sample_time = 1e-4,
           .count = 2,
+          .description_id = "0123456789abcdef",
           .y_names = {"x", "i1", "i2"},
           .u_names = {"u1", "u2"},
           .r_names = {},
           .y = {1e-6 * k, 0.5, 0.5, 2e-6, 0.51, 0.49},
           .u = {8.75, 8.75, 8.8, 8.7},
           .r = {}};
+}
+
+template <>
+PlantDescription largest<PlantDescription>() {
+  const std::size_t n = 64;  // 64 x 64 = max_matrix_values
+  return {.plant_id = text_of_length(limits::id_length),
+          .description_id = text_of_length(limits::id_length, 'd'),
+          .model = text_of_length(limits::name_length, 'm'),
+          .parameters = named_list<NamedValue>(limits::max_parameters, 'p'),
+          .sample_time = 1e-4,
+          .y_names = names(limits::max_channels, 'y'),
+          .u_names = names(limits::max_channels, 'u'),
+          .r_names = names(limits::max_channels, 'r'),
+          .operating_point = named_list<NamedValue>(limits::max_parameters, 'o'),
+          .has_controller = true,
+          .controller = {.kind = text_of_length(limits::name_length, 'k'),
+                         .sample_time = 2e-4,
+                         .inputs = names(limits::max_channels, 'i'),
+                         .outputs = names(limits::max_channels, 'O'),
+                         .matrices = {square(n, 1.0), square(n, 2.0), square(n, 3.0), square(n, 4.0)},
+                         .initial_state = {static_cast<std::uint32_t>(limits::max_matrix_values), 1,
+                                           ramp(limits::max_matrix_values, -5.0)},
+                         .output_limits = {2048, 2, ramp(limits::max_matrix_values, -9.0)},
+                         .state_limits = {2048, 2, ramp(limits::max_matrix_values, 9.0)}}};
+}
+
+template <>
+PlantDescription small<PlantDescription>(int k) {
+  return {.plant_id = "bearing-A",
+          .description_id = "description-" + std::to_string(k),
+          .model = "amb1dof_voltage",
+          .parameters = {{"R1", 17.5 + k}, {"m", 1.8}},
+          .sample_time = 1e-4,
+          .y_names = {"x", "i1", "i2"},
+          .u_names = {"u1", "u2"},
+          .r_names = {"r1", "r2"},
+          .operating_point = {{"u1", 8.75}},
+          .has_controller = k % 2 == 1,
+          .controller = {.kind = "state_space",
+                         .sample_time = 1e-4,
+                         .inputs = {"x"},
+                         .outputs = {"u1"},
+                         .matrices = {{1, 1, {0.5}}, {1, 1, {1.0}}, {1, 1, {-2.0}}, {1, 1, {0.0}}},
+                         .initial_state = {},
+                         .output_limits = {1, 2, {0.0, 10.5}},
+                         .state_limits = {0, 2, {}}}};
 }
 
 template <>

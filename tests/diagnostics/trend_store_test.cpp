@@ -107,6 +107,22 @@ TEST(TrendStore, RoundTrip) {
   EXPECT_EQ(store.integrity_check(), "ok");
 }
 
+// Another bearing under a plant id: its baselines go, other plants' and the history stay.
+TEST(TrendStore, ForgetBaselinesOfOnePlant) {
+  TrendStore store(fresh_store_path("forget"));
+  store.write({{{1.0, "bearing-A", Source::sim, {{"R1", 17.5, 0.1}}}},
+               {},
+               {{"bearing-A", "R1", given_baseline(17.5, 0.01), 1.0},
+                {"bearing-A", "R2", given_baseline(17.5, 0.01), 1.0},
+                {"bearing-B", "R1", given_baseline(18.0, 0.01), 1.0}}});
+  EXPECT_EQ(store.forget_baselines("bearing-A"), 2u);
+  EXPECT_FALSE(store.baseline("bearing-A", "R1"));
+  EXPECT_FALSE(store.baseline("bearing-A", "R2"));
+  EXPECT_DOUBLE_EQ(store.baseline("bearing-B", "R1")->mean, 18.0);
+  EXPECT_EQ(store.history("bearing-A", "R1").size(), 1u);
+  EXPECT_EQ(store.forget_baselines("bearing-A"), 0u);
+}
+
 TEST(TrendStore, LatestAlertsNewestFirstAndPerPlant) {
   TrendStore store(fresh_store_path("alerts"));
   Batch batch;

@@ -50,7 +50,7 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
   const fs::path dir = fs::temp_directory_path() / ("ambid-import-identify-" + std::to_string(std::random_device{}()));
   write_experiment(e, dir / "si");
   ImportOptions options;
-  options.template_sidecar = read_experiment_sidecar(dir / "si.json");
+  options.template_sidecar = read_sidecar(dir / "si.json");
   IdentifyOptions deadbeat;
   deadbeat.method = "deadbeat";
   const Model original = identify_experiment(read_experiment(dir / "si").experiment, deadbeat);

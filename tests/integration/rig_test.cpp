@@ -80,7 +80,7 @@ TEST(Rig, SamplesOfTheBoardReachTheBusBitForBit) {
   swap_to_rig(stack, 19180);
   EXPECT_THAT(stack.ambid("status --wait 2").output, HasSubstr("source rig 127.0.0.1:19180"));
   const std::string stem = (stack.dir() / "recorded").string();
-  const CommandResult r = stack.ambid("record --out " + stem + " --duration 0.5 --scenario " + nominal);
+  const CommandResult r = stack.ambid("record --out " + stem + " --duration 0.5");
   ASSERT_EQ(r.status, 0) << r.output << stack.log("plant");
   const Experiment e = read_experiment(stem).experiment;
   ASSERT_EQ(e.samples(), 5000);
@@ -159,7 +159,7 @@ TEST(Rig, ExcitationsWithinLimitsReachTheBoardOthersAreRefusedBeforeTheyLeave) {
   // The accepted PRBS of 0.1 V runs on the board: the recorded excitation is +-0.1 V.
   std::this_thread::sleep_for(1s);  // 10 s of board time: the records after the ACK
   const std::string stem = (stack.dir() / "excited").string();
-  ASSERT_EQ(stack.ambid("record --out " + stem + " --duration 0.3 --scenario " + nominal).status, 0);
+  ASSERT_EQ(stack.ambid("record --out " + stem + " --duration 0.3").status, 0);
   const Experiment e = read_experiment(stem).experiment;
   EXPECT_NEAR(e.r.cwiseAbs().maxCoeff(), 0.1, 1e-12);
   EXPECT_NEAR(e.r.cwiseAbs().minCoeff(), 0.1, 1e-12);

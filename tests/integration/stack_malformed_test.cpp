@@ -12,6 +12,7 @@
 
 #include "plant_sim/scenario.hpp"
 #include "services/bus/make_bus.hpp"
+#include "services/convert/plant_description.hpp"
 #include "stack_support.hpp"
 
 namespace ambid::testing {
@@ -29,10 +30,11 @@ bool wait_for(bus::Bus& b, std::chrono::seconds limit, Predicate done) {
   return done();
 }
 
-// One good batch of 500 samples of the nominal simulation.
+// One good batch of 500 samples of the nominal simulation, naming its plant description.
 bus::PlantSamples good_batch(const Experiment& e, std::uint64_t seq) {
   bus::PlantSamples b;
   b.plant_id = "bearing-1";
+  b.description_id = convert::describe(e, "bearing-1").description_id;
   b.seq = seq;
   b.t0 = e.t(Eigen::Index(seq) * 500);
   b.sample_time = e.sample_time;
@@ -60,6 +62,8 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   sim::ScenarioOptions o;
   o.duration = 0.6;
   const Experiment e = sim::simulate_scenario(o);
+  auto descriptions = b->writer<bus::PlantDescription>();  // transient-local: waits for the identifier
+  descriptions->write(convert::describe(e, "bearing-1"));
   // Our writer matching the identifier does not mean the identifier matched us yet (discovery
   // is asymmetric, and a volatile reader drops what came before): offer one batch (a tenth of
   // a window, never identified) until the identifier's Health counts it, then count from there.

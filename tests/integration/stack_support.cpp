@@ -47,8 +47,11 @@ Stack::Stack(const std::string& name, int domain, const std::map<std::string, st
   fs::create_directories(dir_);
   // The bearing with 1 nm / 1 uA sensor noise: these tests are about the plumbing, and the ERA
   // default method identifies it in 0.25 s windows (not so the stack's deploy/config bearing).
+  // A swap to the rig emulator (nominal bearing, lqr) reads it with the board's description.
+  const fs::path rig_description = fs::path(AMBID_SOURCE_DIR) / "deploy" / "config" / "rig-description.json";
   const fs::path config = fs::path(AMBID_SOURCE_DIR) / "tests" / "integration" / "scenarios";
   std::ofstream(dir_ / "plant.json") << R"({"source": "sim", "target": ")" << (config / "quiet-bearing.json").string()
+                                     << R"(", "rig_description": ")" << rig_description.string()
                                      << R"(", "batch_samples": 500, "speed": 10})";
   std::ofstream(dir_ / "identifier.json") << R"({"window": 0.25, "settle": 0.25})";
   std::ofstream(dir_ / "diagnostics.json")

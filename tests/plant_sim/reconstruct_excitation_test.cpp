@@ -44,7 +44,7 @@ TEST(ReconstructExcitation, EqualsTheTrueExcitationWhereNoClampActedAndMarksTheC
   for (const auto& name : truth.y_names) m.y.push_back(parse_signal_mapping(name + "=" + name));
   for (const auto& name : truth.u_names) m.u.push_back(parse_signal_mapping(name + "=" + name));
   ImportOptions options;
-  options.template_sidecar = read_experiment_sidecar(dir / "truth.json");
+  options.template_sidecar = read_sidecar(dir / "truth.json");
   options.reconstruct_r = true;
   const ImportResult result = import_experiment(dir / "logged.csv", m, options);
   const Experiment& e = result.experiment;

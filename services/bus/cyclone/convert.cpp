@@ -132,6 +132,7 @@ void to_cyclone(const PlantSamples& in, ambid_PlantSamples& out) {
   out.t0 = in.t0;
   out.sample_time = in.sample_time;
   out.count = in.count;
+  copy(in.description_id, out.description_id);
   put(out.y_names, in.y_names);
   put(out.u_names, in.u_names);
   put(out.r_names, in.r_names);
@@ -146,12 +147,57 @@ PlantSamples from_cyclone(const ambid_PlantSamples& in) {
           .t0 = in.t0,
           .sample_time = in.sample_time,
           .count = in.count,
+          .description_id = text(in.description_id),
           .y_names = names(in.y_names),
           .u_names = names(in.u_names),
           .r_names = names(in.r_names),
           .y = doubles(in.y),
           .u = doubles(in.u),
           .r = doubles(in.r)};
+}
+
+void to_cyclone(const PlantDescription& in, ambid_PlantDescription& out) {
+  copy(in.plant_id, out.plant_id);
+  copy(in.description_id, out.description_id);
+  copy(in.model, out.model);
+  put(out.parameters, in.parameters);
+  out.sample_time = in.sample_time;
+  put(out.y_names, in.y_names);
+  put(out.u_names, in.u_names);
+  put(out.r_names, in.r_names);
+  put(out.operating_point, in.operating_point);
+  out.has_controller = in.has_controller;
+  const ControllerDescription& c = in.controller;
+  copy(c.kind, out.controller.kind);
+  out.controller.sample_time = c.sample_time;
+  put(out.controller.inputs, c.inputs);
+  put(out.controller.outputs, c.outputs);
+  put(out.controller.matrices, c.matrices);
+  put(out.controller.initial_state, c.initial_state);
+  put(out.controller.output_limits, c.output_limits);
+  put(out.controller.state_limits, c.state_limits);
+}
+
+PlantDescription from_cyclone(const ambid_PlantDescription& in) {
+  const ambid_ControllerDescription& c = in.controller;
+  return {.plant_id = text(in.plant_id),
+          .description_id = text(in.description_id),
+          .model = text(in.model),
+          .parameters = named_values(in.parameters),
+          .sample_time = in.sample_time,
+          .y_names = names(in.y_names),
+          .u_names = names(in.u_names),
+          .r_names = names(in.r_names),
+          .operating_point = named_values(in.operating_point),
+          .has_controller = in.has_controller,
+          .controller = {.kind = text(c.kind),
+                         .sample_time = c.sample_time,
+                         .inputs = names(c.inputs),
+                         .outputs = names(c.outputs),
+                         .matrices = state_space(c.matrices),
+                         .initial_state = matrix(c.initial_state),
+                         .output_limits = matrix(c.output_limits),
+                         .state_limits = matrix(c.state_limits)}};
 }
 
 void to_cyclone(const ExcitationCommand& in, ambid_ExcitationCommand& out) {

@@ -103,6 +103,7 @@ void to_fast(const PlantSamples& in, ::ambid::PlantSamples& out) {
   out.t0(in.t0);
   out.sample_time(in.sample_time);
   out.count(in.count);
+  out.description_id() = in.description_id;
   out.y_names(fixed<::ambid::NAME_LENGTH>(in.y_names));
   out.u_names(fixed<::ambid::NAME_LENGTH>(in.u_names));
   out.r_names(fixed<::ambid::NAME_LENGTH>(in.r_names));
@@ -117,12 +118,58 @@ PlantSamples from_fast(const ::ambid::PlantSamples& in) {
           .t0 = in.t0(),
           .sample_time = in.sample_time(),
           .count = in.count(),
+          .description_id = in.description_id().to_string(),
           .y_names = strings(in.y_names()),
           .u_names = strings(in.u_names()),
           .r_names = strings(in.r_names()),
           .y = in.y(),
           .u = in.u(),
           .r = in.r()};
+}
+
+void to_fast(const PlantDescription& in, ::ambid::PlantDescription& out) {
+  out.plant_id() = in.plant_id;
+  out.description_id() = in.description_id;
+  out.model() = in.model;
+  out.parameters(to_fast(in.parameters));
+  out.sample_time(in.sample_time);
+  out.y_names(fixed<::ambid::NAME_LENGTH>(in.y_names));
+  out.u_names(fixed<::ambid::NAME_LENGTH>(in.u_names));
+  out.r_names(fixed<::ambid::NAME_LENGTH>(in.r_names));
+  out.operating_point(to_fast(in.operating_point));
+  out.has_controller(in.has_controller);
+  const ControllerDescription& c = in.controller;
+  ::ambid::ControllerDescription& fc = out.controller();
+  fc.kind() = c.kind;
+  fc.sample_time(c.sample_time);
+  fc.inputs(fixed<::ambid::NAME_LENGTH>(c.inputs));
+  fc.outputs(fixed<::ambid::NAME_LENGTH>(c.outputs));
+  to_fast(c.matrices, fc.matrices());
+  to_fast(c.initial_state, fc.initial_state());
+  to_fast(c.output_limits, fc.output_limits());
+  to_fast(c.state_limits, fc.state_limits());
+}
+
+PlantDescription from_fast(const ::ambid::PlantDescription& in) {
+  const ::ambid::ControllerDescription& c = in.controller();
+  return {.plant_id = in.plant_id().to_string(),
+          .description_id = in.description_id().to_string(),
+          .model = in.model().to_string(),
+          .parameters = from_fast(in.parameters()),
+          .sample_time = in.sample_time(),
+          .y_names = strings(in.y_names()),
+          .u_names = strings(in.u_names()),
+          .r_names = strings(in.r_names()),
+          .operating_point = from_fast(in.operating_point()),
+          .has_controller = in.has_controller(),
+          .controller = {.kind = c.kind().to_string(),
+                         .sample_time = c.sample_time(),
+                         .inputs = strings(c.inputs()),
+                         .outputs = strings(c.outputs()),
+                         .matrices = from_fast(c.matrices()),
+                         .initial_state = from_fast(c.initial_state()),
+                         .output_limits = from_fast(c.output_limits()),
+                         .state_limits = from_fast(c.state_limits())}};
 }
 
 void to_fast(const ExcitationCommand& in, ::ambid::ExcitationCommand& out) {

@@ -1,0 +1,22 @@
+#include "services/convert/estimate_window.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "diagnostics/fault_isolation.hpp"
+
+namespace ambid::convert {
+
+diag::EstimateWindow estimate_window(const bus::IdentifiedModel& model, diag::Source source) {
+  const std::vector<std::string>& monitored = diag::monitored_amb1dof_parameters();
+  diag::EstimateWindow w;
+  w.time = model.time;
+  w.plant_id = model.plant_id;
+  w.source = source;
+  for (const bus::Estimate& e : model.physical)
+    if (std::find(monitored.begin(), monitored.end(), e.name) != monitored.end())
+      w.estimates.push_back({e.name, e.value, e.sigma});
+  return w;
+}
+
+}  // namespace ambid::convert
