@@ -170,20 +170,27 @@ std::optional<double> negative_real_eigenvalue(const DiscreteSystem& realization
 
 // realize() with the given Markov count, or without one with default_markov_counts() in turn
 // until ERA finds the model order determined and no state on the negative real axis;
-// `o.markov_count` becomes the count used. Throws InsufficientData when none does.
+// `o.markov_count` becomes the count used. When every determined realisation has such a state
+// (a discrete plant that truly has one, or noise no count gets rid of), the last of them is
+// returned: a valid discrete model without a continuous equivalent (Model::no_continuous).
+// Throws InsufficientData when no count determines the order.
 DiscreteSystem realize_determined(Realize realize, const Experiment& e, IdentifyOptions& o) {
   if (o.markov_count > 0) return realize(e, o, {});
   std::string last;
+  std::optional<std::pair<DiscreteSystem, Index>> with_negative_state;
   for (const Index count : default_markov_counts()) {
     o.markov_count = count;
     try {
-      const DiscreteSystem realization = realize(e, o, {});
-      const std::optional<double> z = negative_real_eigenvalue(realization);
-      if (!z) return realization;
-      last = "a state at z = " + std::to_string(*z) + " on the negative real axis, of no sampled plant";
+      DiscreteSystem realization = realize(e, o, {});
+      if (!negative_real_eigenvalue(realization)) return realization;
+      with_negative_state = {std::move(realization), count};
     } catch (const UndeterminedOrder& error) {
       last = error.what();
     }
+  }
+  if (with_negative_state) {
+    o.markov_count = with_negative_state->second;
+    return with_negative_state->first;
   }
   throw InsufficientData(kWho + ": the data do not determine a model of this order: with " +
                          std::to_string(o.markov_count) + " Markov parameters (the most tried) " + last);

@@ -18,6 +18,9 @@
 namespace ambid::ident {
 namespace {
 
+// A v whose one-sigma exceeds half its value is not determined by the data.
+constexpr double kMaxRelativeSigma = 0.5;
+
 using Index = Eigen::Index;
 using pem::Gain;
 using pem::Parameters;
@@ -249,6 +252,14 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
     fit.initial_state = theta.segment<4>(pem::kInitial);
     fit.predictor_gain = pem::gain_of(theta);
     fit.covariance = scale.head<9>().asDiagonal() * cov_p.topLeftCorner<9, 9>() * scale.head<9>().asDiagonal();
+    // What the data must support is v; the nuisance directions (the initial state, which the
+    // predictor forgets within a few samples) may be far weaker than any v.
+    for (Index i = 0; i < 9; ++i) {
+      const double relative = std::sqrt(fit.covariance(i, i)) / std::abs(fit.v(i));
+      if (!(relative <= kMaxRelativeSigma))
+        throw InsufficientData(kWho + ": the data do not determine v" + std::to_string(i + 1) + " (one sigma " +
+                               std::to_string(100.0 * relative) + " % of its value)");
+    }
     const std::optional<Eigen::Vector3d> squares = predictor.squares(theta);
     if (!squares) throw InsufficientData(kWho + ": the predictor diverges at the solution");
     fit.residual_rms = (*squares / double(predictor.samples())).cwiseSqrt();

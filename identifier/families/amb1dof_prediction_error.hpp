@@ -48,10 +48,13 @@
 namespace ambid::ident {
 
 struct Amb1dofPredictionErrorOptions {
-  int max_iterations = 60;         // Levenberg-Marquardt iterations per pass (of two)
-  double step_tolerance = 0.05;    // converged: the Gauss-Newton step is below this many standard errors
-  double max_condition = 1e8;      // of the column-equilibrated Jacobian; beyond it: InsufficientData
-  Eigen::Index score_block = 200;  // samples per block of the score covariance
+  int max_iterations = 60;       // Levenberg-Marquardt iterations per pass (of two)
+  double step_tolerance = 0.05;  // converged: the Gauss-Newton step is below this many standard errors
+  // Of the column-equilibrated Jacobian; beyond it: InsufficientData. Its weakest directions are
+  // usually the initial state's (short windows), so the bound guards the numerics (QR keeps
+  // ~16 - 12 digits); whether the data support v is checked on v's own sigmas.
+  double max_condition = 1e12;
+  Eigen::Index score_block = 100;  // samples per block of the score covariance (10 ms at 10 kHz)
   Eigen::Index min_blocks = 10;    // fewer blocks in the record: InsufficientData
 };
 

@@ -50,31 +50,22 @@ std::map<std::string, double> unnamed(const std::vector<bus::NamedValue>& values
 }
 
 // The sidecar's `[[lo, hi] | null, ...]` (null: no limit) as an n x 2 matrix with infinities.
-bus::Matrix limits_matrix(const nlohmann::json& limits) {
-  bus::Matrix out{0, 2, {}};
-  if (!limits.is_array()) return out;
-  for (const auto& pair : limits) {
-    const bool given = pair.is_array() && pair.size() == 2;
-    for (std::size_t k = 0; k < 2; ++k)
-      out.values.push_back(given && pair[k].is_number() ? pair[k].get<double>() : (k == 0 ? -inf : inf));
-    ++out.rows;
+// Clamps as a rows x 2 matrix of [lo, hi]; an infinite bound is no bound on that side.
+bus::Matrix limits_matrix(const std::vector<Limit>& limits) {
+  bus::Matrix out{std::uint32_t(limits.size()), 2, {}};
+  for (const Limit& l : limits) {
+    out.values.push_back(l.lo);
+    out.values.push_back(l.hi);
   }
   return out;
 }
 
-nlohmann::json limits_json(const bus::Matrix& m, const std::string& field) {
-  if (m.cols != 2)
+std::vector<Limit> limits_of(const bus::Matrix& m, const std::string& field) {
+  if (m.rows > 0 && m.cols != 2)
     throw Error("plant description: controller." + field + " has " + std::to_string(m.cols) +
                 " columns, expected 2 ([lo, hi])");
-  nlohmann::json out = nlohmann::json::array();
-  for (std::size_t i = 0; i < m.rows; ++i) {
-    const double lo = m.values[2 * i], hi = m.values[2 * i + 1];
-    if (lo == -inf && hi == inf)
-      out.push_back(nullptr);
-    else
-      out.push_back({std::isinf(lo) ? nlohmann::json() : nlohmann::json(lo),
-                     std::isinf(hi) ? nlohmann::json() : nlohmann::json(hi)});
-  }
+  std::vector<Limit> out;
+  for (std::size_t i = 0; i < m.rows; ++i) out.push_back({m.values[2 * i], m.values[2 * i + 1]});
   return out;
 }
 
@@ -162,12 +153,8 @@ bus::PlantDescription describe(const Experiment& header, const std::string& plan
     d.controller.outputs = k->outputs;
     d.controller.matrices = {to_matrix(k->A), to_matrix(k->B), to_matrix(k->C), to_matrix(k->D)};
     if (k->initial_state.size() > 0) d.controller.initial_state = to_matrix(k->initial_state);
-    const nlohmann::json& extra = header.extra.json();
-    if (extra.is_object() && extra.contains("controller") && extra["controller"].is_object()) {
-      const nlohmann::json& c = extra["controller"];
-      if (c.contains("output_limits")) d.controller.output_limits = limits_matrix(c["output_limits"]);
-      if (c.contains("state_limits")) d.controller.state_limits = limits_matrix(c["state_limits"]);
-    }
+    d.controller.output_limits = limits_matrix(k->output_limits);
+    d.controller.state_limits = limits_matrix(k->state_limits);
   }
   d.description_id = description_id(d);
   return d;
@@ -205,11 +192,9 @@ Experiment experiment_header(const bus::PlantDescription& d) {
     c.C = from_matrix(k.matrices.c);
     c.D = from_matrix(k.matrices.d);
     if (k.initial_state.values.size() > 0) c.initial_state = from_matrix(k.initial_state).reshaped();
+    c.output_limits = limits_of(k.output_limits, "output_limits");
+    c.state_limits = limits_of(k.state_limits, "state_limits");
     e.controller = std::move(c);
-    nlohmann::json controller = nlohmann::json::object();
-    if (k.output_limits.rows > 0) controller["output_limits"] = limits_json(k.output_limits, "output_limits");
-    if (k.state_limits.rows > 0) controller["state_limits"] = limits_json(k.state_limits, "state_limits");
-    if (!controller.empty()) e.extra = JsonValue(nlohmann::json{{"controller", controller}});
   }
   try {
     e.validate_metadata();

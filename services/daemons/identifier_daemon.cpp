@@ -70,7 +70,6 @@ int run_identifier_daemon(const DaemonOptions& options) {
   WindowFailures failures(config.failures, runtime.metrics);
   runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
                 "; plant description from the bus");
-  WindowIdentifier identifier(config.identify);
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
@@ -85,7 +84,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
         const Experiment w = window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
-          bus::IdentifiedModel model = identifier.identify(w, options.plant_id, seq++);
+          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.identify);
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
           runtime.metrics.published.Increment();

@@ -9,9 +9,7 @@
 // reconstructed velocity, which the offset term of the realisation absorbs exactly:
 // x[k+1] = A x + B u + c holds for x + d with c' = c + d - A d.
 #include <cstdint>
-#include <optional>
 #include <string>
-#include <utility>
 
 #include "core/experiment.hpp"
 #include "identifier/identify_window.hpp"
@@ -27,22 +25,5 @@ using ident::window_identify_options;
 bus::IdentifiedModel identify_window(
     const Experiment& window, const std::string& plant_id, std::uint64_t seq,
     const ident::IdentifyOptions& options = window_identify_options(kDefaultWindowMethod));
-
-// Window after window of one plant with the same options. For pem each window starts from the
-// previous window's fit (warm start: a few iterations instead of the least-squares starts,
-// identifier/pem_warm_start.hpp); when there is none, or the warm-started fit fails, the window
-// is identified from the cold starts. Other methods identify every window afresh.
-class WindowIdentifier {
- public:
-  explicit WindowIdentifier(ident::IdentifyOptions options) : options_(std::move(options)) {}
-  // As identify_window.
-  bus::IdentifiedModel identify(const Experiment& window, const std::string& plant_id, std::uint64_t seq);
-  bool warm() const { return warm_.has_value(); }  // the next pem window starts from the last fit
-  void forget() { warm_.reset(); }                 // e.g. another bearing now
-
- private:
-  ident::IdentifyOptions options_;
-  std::optional<ident::PemWarmStart> warm_;
-};
 
 }  // namespace ambid::daemons

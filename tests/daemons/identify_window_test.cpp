@@ -70,42 +70,6 @@ TEST(IdentifyWindow, DeadbeatMidRecordWindowGivesTrueCoilResistancesWithSigmas) 
   for (const auto& e : m.physical) EXPECT_GT(e.sigma, 0.0) << e.name;
 }
 
-double sigma(const bus::IdentifiedModel& m, const std::string& name) {
-  for (const auto& e : m.physical)
-    if (e.name == name) return e.sigma;
-  ADD_FAILURE() << name << " missing";
-  return 0.0;
-}
-
-// The daemon's default at a real bearing's noise (0.1 um, 1 mA, 1 V PRBS): pem window after
-// window, each from the previous fit. A warm-started window agrees with its cold fit to a small
-// fraction of a sigma, and a bearing whose coil 1 is suddenly 20 % hot is read right from the
-// nominal bearing's warm start (R1 within 3 sigma of the truth linearised at its operating
-// point: the loop's integrator moves the bias currents, so 21 ohm stays 21 ohm).
-TEST(IdentifyWindow, PemWindowsStartFromThePreviousFit) {
-  sim::ScenarioOptions o = one_second();
-  o.position_noise = 1e-7;
-  o.current_noise = 1e-3;
-  o.amplitude = 1.0;
-  WindowIdentifier identifier(window_identify_options("pem"));
-  const Experiment first = second_window(o);
-  identifier.identify(first, "p", 1);
-  ASSERT_TRUE(identifier.warm());
-  o.seed = 2;
-  const Experiment next = second_window(o);
-  const bus::IdentifiedModel warm = identifier.identify(next, "p", 2);
-  const bus::IdentifiedModel cold = identify_window(next, "p", 2, window_identify_options("pem"));
-  for (const char* name : {"R1", "R2", "kw1", "kw2"})
-    EXPECT_NEAR(physical(warm, name), physical(cold, name), 0.1 * sigma(cold, name)) << name;
-
-  o.true_parameters = {{"R1", 21.0}};
-  o.seed = 3;
-  const bus::IdentifiedModel hot = identifier.identify(second_window(o), "p", 3);
-  EXPECT_NEAR(physical(hot, "R1"), 21.0, 3.0 * sigma(hot, "R1"));
-  EXPECT_LT(sigma(hot, "R1"), 0.04 * 21.0);
-  EXPECT_NEAR(physical(hot, "R2"), 17.5, 3.0 * sigma(hot, "R2"));
-}
-
 TEST(IdentifyWindow, UnknownMethodIsRefusedNamingTheKnownOnes) {
   try {
     window_identify_options("least-squares");

@@ -48,11 +48,15 @@ TEST(PlantDescription, IdIsAHashOfTheContentAndTheHeaderComesBackExactly) {
 
 TEST(PlantDescription, ControllerLimitsTravelAndBadContentIsRefused) {
   Experiment h = header("pid");
-  h.extra.json()["controller"]["output_limits"] = {{0.0, 10.5}, nullptr};
+  h.controller->output_limits = {{0.0, 10.5}, Limit{}};  // the second input unclamped
   const bus::PlantDescription d = describe(h, "b");
   EXPECT_EQ(d.controller.output_limits.rows, 2u);
   const Experiment back = convert::experiment_header(d);
-  EXPECT_EQ(back.extra.json()["controller"]["output_limits"], h.extra.json()["controller"]["output_limits"]);
+  ASSERT_EQ(back.controller->output_limits.size(), 2u);
+  EXPECT_EQ(back.controller->output_limits[0].lo, 0.0);
+  EXPECT_EQ(back.controller->output_limits[0].hi, 10.5);
+  EXPECT_TRUE(std::isinf(back.controller->output_limits[1].lo) && std::isinf(back.controller->output_limits[1].hi));
+  EXPECT_TRUE(back.controller->state_limits.empty());
 
   bus::PlantDescription tampered = d;
   tampered.parameters[0].value *= 2;
@@ -133,7 +137,8 @@ TEST(DescribedWindows, AWindowReadWithItsOwnControllerIdentifiesTheBearingAnothe
     convert::SampleWindow window(header, 2500, 2500);
     for (std::uint64_t seq = 0; seq < 10; ++seq)
       window.add(convert::sample_batch(pid, Eigen::Index(seq) * 500, 500, "b", seq, 0.0));
-    for (const auto& p : identify_window(window.take(), "b", 0).physical)
+    // closed-loop reads r -> y through the controller (pem needs it only for a starting point)
+    for (const auto& p : identify_window(window.take(), "b", 0, window_identify_options("closed-loop")).physical)
       if (p.name == "R1") return p.value;
     return 0.0;
   };

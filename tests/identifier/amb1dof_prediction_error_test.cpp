@@ -171,12 +171,12 @@ TEST(Amb1dofPredictionError, UnexcitedLoopIsRefused) {
 }
 
 TEST(Amb1dofPredictionError, TooShortRecordAndBadInputsAreRefused) {
-  const Direct d = direct_inputs(sim::simulate_scenario(noisy_scenario(0.1)));  // 1000 samples < 10 blocks of 200
+  const Direct d = direct_inputs(sim::simulate_scenario(noisy_scenario(0.09)));  // 900 samples < 10 blocks of 100
   try {
     fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {d.v});
-    ADD_FAILURE() << "identified from 1000 samples";
+    ADD_FAILURE() << "identified from " << d.y.rows() << " samples";
   } catch (const InsufficientData& e) {
-    EXPECT_NE(std::string(e.what()).find("1000 samples"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("needs at least 10 blocks of 100"), std::string::npos) << e.what();
   }
   Eigen::Matrix<double, 9, 1> zero = d.v;
   zero(3) = 0.0;

@@ -68,8 +68,11 @@ TEST(ArxOrderRow, WindowTooNoisyForFourStatesSaysSo) {
       } catch (const InsufficientData& e) {
         const std::string what = e.what();
         std::printf("%s window %lld: %s\n", controller.c_str(), static_cast<long long>(w), what.c_str());
+        // Either ERA finds no determined order, or the only determined ones keep a noise state
+        // on the negative real axis (a valid discrete model without physical parameters).
         EXPECT_TRUE(what.find("the data do not determine") != std::string::npos ||
-                    what.find("numerical rank") != std::string::npos)
+                    what.find("numerical rank") != std::string::npos ||
+                    what.find("no continuous-time model") != std::string::npos)
             << what;
         ++refused;
       }

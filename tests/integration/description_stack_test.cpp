@@ -44,7 +44,7 @@ std::string record(const Stack& stack, const std::string& controller) {
 }
 
 // R1 of every window the identifier can cut from one replayed record, identified offline with
-// the daemon's method and the file's own controller: 0.25 s (2500 samples) from any batch
+// the stack harness's method (closed-loop) and the file's own controller: 0.25 s (2500 samples) from any batch
 // boundary (batches of 500; a window starts 0.25 s into a record, or at the batch after a gap
 // when the identifier fell behind).
 std::vector<double> offline_r1(const std::string& file) {
@@ -53,7 +53,8 @@ std::vector<double> offline_r1(const std::string& file) {
   for (Eigen::Index start = 0; start + 2500 <= e.samples(); start += 500) {
     convert::SampleWindow window(e, 2500);
     for (Eigen::Index k = 0; k < 5; ++k) window.add(convert::sample_batch(e, start + 500 * k, 500, "p", k, 0.0));
-    for (const auto& p : daemons::identify_window(window.take(), "p", 0).physical)
+    for (const auto& p :
+         daemons::identify_window(window.take(), "p", 0, daemons::window_identify_options("closed-loop")).physical)
       if (p.name == "R1") r1.push_back(p.value);
   }
   return r1;
