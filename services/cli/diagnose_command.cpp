@@ -79,8 +79,8 @@ struct Input {
   std::string kind;  // "experiment" | "model"
   std::vector<diag::EstimateWindow> windows;
   std::vector<Skipped> skipped;
-  double time_to = 0.0;            // end of its last window, identified or skipped
-  std::optional<Experiment> loop;  // an experiment's sidecar (no samples): plant and controller
+  double time_to = 0.0;              // end of its last window, identified or skipped
+  std::optional<Experiment> loop;    // an experiment's sidecar (no samples): plant and controller
   Eigen::Index clamped_samples = 0;  // samples where a controller clamp acted (not exogenous)
 };
 
