@@ -16,6 +16,7 @@
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/description_change.hpp"
+#include "services/daemons/model_gaps.hpp"
 #include "services/daemons/plant_time.hpp"
 #include "services/daemons/window_failures.hpp"
 
@@ -131,6 +132,9 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       runtime.set_health(bus::AlertLevel::warn, "trend store retention failed: " + std::string(e.what()));
     }
   };
+  ModelGaps gaps;
+  prometheus::Counter& missed_models = runtime.metrics.counter(
+      "ambid_models_missed_total", "identified models never received (a hole in the history)", {});
   auto last_model = std::chrono::steady_clock::now();
   bool stale = false;
   bool identifier_failing = false;  // its Health says its windows keep failing (window_failures.hpp)
@@ -153,6 +157,23 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       runtime.metrics.received.Increment();
       const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
       if (!at) continue;  // already processed (a late-joiner replay)
+      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
+        // This daemon fell behind or was stopped: the models in between are gone for good.
+        bus::Alert a;
+        a.plant_id = options.plant_id;
+        a.fault = "history_gap";
+        a.parameter = "all";
+        a.level = bus::AlertLevel::warn;
+        a.time = at->time;
+        a.message = "missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
+                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
+                    " s: a hole in the trend history";
+        alerts->write(a);
+        runtime.metrics.published.Increment();
+        missed_models.Increment(double(missed));
+        runtime.log(a.message);
+        runtime.set_health(bus::AlertLevel::warn, a.message);
+      }
       if (at->after_restart) {
         const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +
                                     " s continues the history at " + std::to_string(at->time) + " s";

@@ -84,7 +84,9 @@ int run_identifier_daemon(const DaemonOptions& options) {
         const Experiment w = window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
-          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq++, config.identify);
+          // Only published models are numbered: a gap in seq is a model a consumer missed.
+          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq, config.identify);
+          ++seq;
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
           runtime.metrics.published.Increment();

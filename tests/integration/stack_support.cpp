@@ -100,6 +100,10 @@ void Stack::kill(const std::string& daemon) {
   pids_.erase(daemon);
 }
 
+void Stack::pause(const std::string& daemon) { ::kill(pids_.at(daemon), SIGSTOP); }
+
+void Stack::resume(const std::string& daemon) { ::kill(pids_.at(daemon), SIGCONT); }
+
 CommandResult Stack::ambid(const std::string& args) const {
   return run_ambid(args + " --domain " + std::to_string(domain_));
 }

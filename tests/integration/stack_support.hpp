@@ -30,7 +30,9 @@ class Stack {
   void start(const std::string& daemon, const std::vector<std::string>& extra_args = {});
   // `ambid ARGS` as a child process known as `name` (log, kill), e.g. the rig emulator.
   void start_process(const std::string& name, const std::vector<std::string>& ambid_args);
-  void kill(const std::string& daemon);  // SIGKILL: no goodbye on the bus
+  void kill(const std::string& daemon);    // SIGKILL: no goodbye on the bus
+  void pause(const std::string& daemon);   // SIGSTOP: alive but deaf, as a stalled process
+  void resume(const std::string& daemon);  // SIGCONT
   // `ambid ARGS --domain D` against this stack.
   CommandResult ambid(const std::string& args) const;
   const std::filesystem::path& dir() const { return dir_; }

@@ -145,6 +145,21 @@ TEST(Stack, APlantRestartContinuesTheHistory) {
   for (std::size_t k = 1; k < after.size(); ++k) EXPECT_GT(after[k].time, after[k - 1].time);
 }
 
+// Issue 18: a diagnostics daemon stalled for a few seconds misses the models published
+// meanwhile (the transient-local history keeps 8); it must say so, not leave a silent hole.
+TEST(Stack, AStalledDiagnosticsDaemonAlertsTheHoleInItsHistory) {
+  Stack stack("stack_stalled", 188);
+  start_all(stack);
+  std::this_thread::sleep_for(std::chrono::seconds(6));
+  stack.pause("diagnostics");
+  std::this_thread::sleep_for(std::chrono::seconds(4));  // ~40 s of plant time: ~160 windows
+  stack.resume("diagnostics");
+  const CommandResult gap = stack.ambid("alerts --until WARN:all --timeout 20");
+  ASSERT_EQ(gap.status, 0) << gap.output << stack.log("diagnostics");
+  EXPECT_THAT(gap.output, HasSubstr("history_gap"));
+  EXPECT_THAT(stack.log("diagnostics"), HasSubstr("identified models (seq"));
+}
+
 TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   Stack stack("stack_refusal", 174);
   stack.start("plant");

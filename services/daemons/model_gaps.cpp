@@ -1,0 +1,11 @@
+#include "services/daemons/model_gaps.hpp"
+
+namespace ambid::daemons {
+
+std::uint64_t ModelGaps::missed(std::uint64_t seq) {
+  const std::uint64_t gap = last_ && seq > *last_ + 1 ? seq - *last_ - 1 : 0;
+  last_ = seq;
+  return gap;
+}
+
+}  // namespace ambid::daemons
