@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "core/experiment_file.hpp"
 #include "core/experiment_import.hpp"
 #include "core/format/experiment_text.hpp"
+#include "core/json_text.hpp"
 
 namespace ambid {
 namespace {
@@ -82,14 +82,9 @@ SignalSource parse_signal_mapping(std::string_view text) {
 }
 
 ImportMapping read_import_mapping(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
+  const std::string text = read_json_file(path);
   try {
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception& e) {
-      throw Error(std::string("malformed JSON: ") + e.what());
-    }
+    const nlohmann::json j = parse_json_text(text);  // bounded: size and depth checked first
     if (!j.is_object()) throw Error("expected a JSON object with keys t, y, u, r, sample_time");
     ImportMapping m;
     for (const auto& [key, value] : j.items()) {
