@@ -28,15 +28,15 @@ struct DiagnosticsConfig {
   diag::EngineConfig engine;
   double silence = 3.0;
   diag::RetentionPolicy retention;
+  double retention_period = 600.0;  // plant seconds between two passes of the retention
 };
 
 constexpr double kDay = 86400.0;
-constexpr double kRetentionPeriod = 600.0;  // plant seconds between two passes of the retention
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "diagnostics config",
                       {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence",
-                       "keep_windows_days", "aggregate_bucket", "keep_days"});
+                       "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
@@ -48,7 +48,10 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   c.retention.aggregate_after = config_value(j, "keep_windows_days", 7.0) * kDay;
   c.retention.bucket = config_value(j, "aggregate_bucket", 3600.0);
   c.retention.max_age = config_value(j, "keep_days", 365.0) * kDay;
+  c.retention_period = config_value(j, "retention_period", c.retention_period);
   c.retention.validate();
+  if (!(c.retention_period > 0 && std::isfinite(c.retention_period)))
+    throw Error("diagnostics config: retention_period must be > 0 s, got " + std::to_string(c.retention_period));
   c.engine.validate();
   if (!(c.silence > 0)) throw Error("diagnostics config: silence must be > 0 s, got " + std::to_string(c.silence));
   return c;
@@ -119,7 +122,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   PlantTime plant_time;
   std::optional<double> last_retention;  // plant time of the last retention pass
   auto retain = [&](double now) {
-    if (last_retention && now - *last_retention < kRetentionPeriod) return;
+    if (last_retention && now - *last_retention < config.retention_period) return;
     last_retention = now;
     try {
       const diag::RetentionReport r = store.apply_retention(config.retention, now);

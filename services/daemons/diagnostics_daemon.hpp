@@ -9,7 +9,11 @@
 //
 // Config (JSON, every key optional):
 //   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,
-//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall)}
+//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
+//    retention of the trend store (diag::RetentionPolicy): "keep_windows_days": 7 (per-window
+//    estimates, then aggregated), "aggregate_bucket": 3600 (s per aggregate), "keep_days": 365,
+//    "retention_period": 600 (s of plant time between two passes; the first pass runs at the
+//    first model)}
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

@@ -77,6 +77,7 @@ class PlantDaemon {
         samples_(bus_->writer<bus::PlantSamples>()),
         descriptions_(bus_->writer<bus::PlantDescription>()),
         state_(bus_->writer<bus::PlantSourceState>()),
+        alerts_(bus_->writer<bus::Alert>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
         rig_description_(c.rig_description.empty() ? std::nullopt : std::optional(read_sidecar(c.rig_description))),
@@ -206,13 +207,22 @@ class PlantDaemon {
 
   // A source that fails after it was accepted (a later simulated record diverges, a replay
   // file vanished) stops; the daemon falls back to the source before it, or waits for the
-  // next command. Health ERROR tells the operator either way.
+  // next command. Health ERROR and an ERROR alert (source_failed) tell the operator either way.
   void source_failed(const std::string& reason) {
     const std::string message =
         "failed: " + reason +
         (previous_ ? "; back to the previous source" : "; no samples until the next source command");
     announce(last_source_command_, false, message);
     runtime_.set_health(bus::AlertLevel::error, "source " + source_->target() + " " + message);
+    bus::Alert a;
+    a.plant_id = options_.plant_id;
+    a.fault = "source_failed";
+    a.parameter = "source";
+    a.level = bus::AlertLevel::error;
+    a.time = clock_;
+    a.message = ("source " + source_->target() + " " + message).substr(0, bus::limits::text_length);
+    alerts_->write(a);
+    runtime_.metrics.published.Increment();
     source_ = std::move(previous_);
     row_ = record_.samples();
     pace_start_ = std::chrono::steady_clock::now();
@@ -241,6 +251,7 @@ class PlantDaemon {
   std::unique_ptr<bus::Writer<bus::PlantSamples>> samples_;
   std::unique_ptr<bus::Writer<bus::PlantDescription>> descriptions_;
   std::unique_ptr<bus::Writer<bus::PlantSourceState>> state_;
+  std::unique_ptr<bus::Writer<bus::Alert>> alerts_;
   std::unique_ptr<bus::Reader<bus::PlantSourceCommand>> source_commands_;
   std::unique_ptr<bus::Reader<bus::ExcitationCommand>> excitation_commands_;
   std::optional<Experiment> rig_description_;

@@ -104,6 +104,19 @@ void Stack::pause(const std::string& daemon) { ::kill(pids_.at(daemon), SIGSTOP)
 
 void Stack::resume(const std::string& daemon) { ::kill(pids_.at(daemon), SIGCONT); }
 
+bool Stack::running(const std::string& daemon) {
+  const auto it = pids_.find(daemon);
+  if (it == pids_.end()) return false;
+  int status = 0;
+  if (waitpid(it->second, &status, WNOHANG) == 0) return true;
+  std::ofstream(dir_ / (daemon + ".log"), std::ios::app)
+      << "[test harness] process ended: " << (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                                                                  : "signal " + std::to_string(WTERMSIG(status)))
+      << "\n";
+  pids_.erase(it);
+  return false;
+}
+
 CommandResult Stack::ambid(const std::string& args) const {
   return run_ambid(args + " --domain " + std::to_string(domain_));
 }

@@ -33,6 +33,8 @@ class Stack {
   void kill(const std::string& daemon);    // SIGKILL: no goodbye on the bus
   void pause(const std::string& daemon);   // SIGSTOP: alive but deaf, as a stalled process
   void resume(const std::string& daemon);  // SIGCONT
+  // False when the daemon's process has ended (then forgotten, with its exit status logged).
+  bool running(const std::string& daemon);
   // `ambid ARGS --domain D` against this stack.
   CommandResult ambid(const std::string& args) const;
   const std::filesystem::path& dir() const { return dir_; }
