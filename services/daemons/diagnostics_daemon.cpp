@@ -158,24 +158,32 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
+      const std::optional<double> previous = plant_time.last();
       const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
       if (!at) continue;  // already processed (a late-joiner replay)
-      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
-        // This daemon fell behind or was stopped: the models in between are gone for good.
+      auto history_gap = [&](const std::string& message) {
         bus::Alert a;
         a.plant_id = options.plant_id;
         a.fault = "history_gap";
         a.parameter = "all";
         a.level = bus::AlertLevel::warn;
         a.time = at->time;
-        a.message = "missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
-                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
-                    " s: a hole in the trend history";
+        a.message = message.substr(0, bus::limits::text_length);
         alerts->write(a);
         runtime.metrics.published.Increment();
-        missed_models.Increment(double(missed));
         runtime.log(a.message);
         runtime.set_health(bus::AlertLevel::warn, a.message);
+      };
+      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
+        // This daemon fell behind or was stopped: the models in between are gone for good.
+        missed_models.Increment(double(missed));
+        history_gap("missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
+                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
+                    " s: a hole in the trend history");
+      } else if (gaps.restarted() && !at->after_restart && previous && at->time - *previous > 4.0 * m.window) {
+        // A restarted identifier numbers from 0 again; the plant ran on meanwhile, unidentified.
+        history_gap("the identifier restarted: no models from plant time " + std::to_string(*previous) + " to " +
+                    std::to_string(at->time - m.window) + " s, a hole in the trend history");
       }
       if (at->after_restart) {
         const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +

@@ -6,6 +6,10 @@
 // stale timeout; the next model brings it back to OK. When the identifier's Health says its
 // windows keep failing (window_failures.hpp) every parameter is marked STALE at once, naming
 // the reason; again the next model brings it back.
+// A hole in the history is logged and raised as a WARN alert history_gap (parameter "all"):
+// a jump in the model numbers (this daemon fell behind or was stopped; model_gaps.hpp) or a
+// restarted identifier (numbers from 0 again) whose first model comes more than 4 windows of
+// plant time after the last one.
 //
 // Config (JSON, every key optional):
 //   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,

@@ -81,6 +81,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
     a.parameter = "samples";
     a.level = bus::AlertLevel::warn;
     a.time = gap.to;
+    a.value = gap.to - gap.from;  // s of plant time never received
     a.message = gap.message().substr(0, bus::limits::text_length);
     alerts->write(a);
     runtime.metrics.published.Increment();

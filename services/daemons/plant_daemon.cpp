@@ -11,6 +11,7 @@
 #include "services/convert/plant_samples.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/excitation_limits.hpp"
 #include "services/daemons/plant_source.hpp"
 #include "services/daemons/rig_source.hpp"
 
@@ -22,8 +23,7 @@ struct PlantConfig {
   std::string target;
   Eigen::Index batch_samples = 500;
   double speed = 10.0;
-  double max_amplitude = 0.5;
-  double max_frequency = 2000.0;
+  ExcitationLimits excitation;
   RigSettings rig;
   std::string rig_description;  // sidecar JSON: the plant description of the rig's board
 };
@@ -37,8 +37,8 @@ PlantConfig plant_config(const nlohmann::json& j) {
   c.target = config_value<std::string>(j, "target", "");
   c.batch_samples = config_value(j, "batch_samples", 500);
   c.speed = config_value(j, "speed", c.speed);
-  c.max_amplitude = config_value(j, "max_amplitude", c.max_amplitude);
-  c.max_frequency = config_value(j, "max_frequency", c.max_frequency);
+  c.excitation.max_amplitude = config_value(j, "max_amplitude", c.excitation.max_amplitude);
+  c.excitation.max_frequency = config_value(j, "max_frequency", c.excitation.max_frequency);
   c.rig.silence = config_value(j, "rig_silence", c.rig.silence);
   c.rig.reply_timeout = config_value(j, "rig_reply_timeout", c.rig.reply_timeout);
   c.rig.allow_remote = config_value(j, "rig_allow_remote", c.rig.allow_remote);
@@ -52,19 +52,6 @@ PlantConfig plant_config(const nlohmann::json& j) {
     throw Error("plant config: batch_samples must be 1..2000, got " + std::to_string(c.batch_samples));
   if (!(c.speed > 0)) throw Error("plant config: speed must be > 0, got " + std::to_string(c.speed));
   return c;
-}
-
-// Empty when the command is within the limits, else why it is refused.
-std::string excitation_violation(const bus::ExcitationCommand& c, const PlantConfig& limits) {
-  static const std::vector<std::string> kinds{"prbs", "multisine", "chirp", "stepped_sine", "none"};
-  if (std::find(kinds.begin(), kinds.end(), c.kind) == kinds.end())
-    return "unknown excitation kind '" + c.kind + "' (known: prbs, multisine, chirp, stepped_sine, none)";
-  if (!(c.amplitude >= 0 && c.amplitude <= limits.max_amplitude))
-    return "amplitude " + std::to_string(c.amplitude) + " V outside 0.." + std::to_string(limits.max_amplitude) + " V";
-  for (double f : c.frequencies)
-    if (!(f > 0 && f <= limits.max_frequency))
-      return "frequency " + std::to_string(f) + " Hz outside (0, " + std::to_string(limits.max_frequency) + "] Hz";
-  return {};
 }
 
 class PlantDaemon {
@@ -185,11 +172,10 @@ class PlantDaemon {
     for (const bus::ExcitationCommand& c : excitation_commands_->take()) {
       if (c.plant_id != options_.plant_id) continue;
       runtime_.metrics.received.Increment();
-      std::string refusal = source_ ? excitation_violation(c, config_) : "no source is running";
+      std::string refusal = source_ ? excitation_violation(c, config_.excitation) : "no source is running";
       if (refusal.empty()) {
         try {
-          const auto [lo, hi] = std::minmax_element(c.frequencies.begin(), c.frequencies.end());
-          source_->excite({c.kind, c.amplitude, c.frequencies.empty() ? 0.0 : *lo, c.frequencies.empty() ? 0.0 : *hi});
+          source_->excite(excitation_request(c));
         } catch (const Error& e) {
           refusal = e.what();
         }
