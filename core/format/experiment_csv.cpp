@@ -8,8 +8,8 @@
 
 #include "core/error.hpp"
 #include "core/format/csv_lines.hpp"
-#include "core/format/file_lines.hpp"
 #include "core/format/experiment_text.hpp"
+#include "core/format/file_lines.hpp"
 #include "core/format/resample.hpp"
 
 namespace ambid {
@@ -137,8 +137,7 @@ void read_samples_csv(const std::filesystem::path& file, const ReadOptions& opti
       if (blank_line == 0) blank_line = lines.number();
       continue;
     }
-    if (blank_line != 0)
-      throw Error(at(blank_line) + " is empty; expected " + std::to_string(header_cells) + " cells");
+    if (blank_line != 0) throw Error(at(blank_line) + " is empty; expected " + std::to_string(header_cells) + " cells");
     split_cells(*line, cells);
     if (cells.size() != header_cells)
       throw Error(at(lines.number()) + " has " + std::to_string(cells.size()) + " cells, the header has " +
@@ -155,8 +154,9 @@ void read_samples_csv(const std::filesystem::path& file, const ReadOptions& opti
     ++rows;
   }
   if (rows < 2) throw Error("has " + std::to_string(rows) + " data rows; at least 2 are needed");
-  if (rows != capacity) throw Error("the file changed while it was read (" + std::to_string(rows) + " rows, " +
-                                    std::to_string(capacity) + " before)");
+  if (rows != capacity)
+    throw Error("the file changed while it was read (" + std::to_string(rows) + " rows, " + std::to_string(capacity) +
+                " before)");
   // Rows are the lines after the header, one each: row k is on line k + 2.
   const auto line_of_row = [](Eigen::Index k) { return std::size_t(k) + 2; };
   const double T = e.sample_time;

@@ -71,8 +71,8 @@ int run_identifier_daemon(const DaemonOptions& options) {
   WindowSteps steps(runtime, dropped_help);
   WindowFailures failures(config.failures, runtime.metrics);
   SampleGaps gaps;
-  prometheus::Counter& missed_samples = runtime.metrics.counter(
-      "ambid_samples_missed_total", "samples never received (a hole in the history)", {});
+  prometheus::Counter& missed_samples =
+      runtime.metrics.counter("ambid_samples_missed_total", "samples never received (a hole in the history)", {});
   // A hole in the samples (sample_gaps.hpp): logged, counted, Health WARN and an alert.
   auto report_gap = [&](const SampleGap& gap) {
     bus::Alert a;

@@ -16,9 +16,9 @@
 namespace ambid::daemons {
 
 struct SampleGap {
-  double from = 0.0, to = 0.0;   // plant time: where the samples should have continued, where they did
-  std::uint64_t samples = 0;     // samples missed, from the time jump
-  std::uint64_t batches = 0;     // batch numbers skipped within a record
+  double from = 0.0, to = 0.0;  // plant time: where the samples should have continued, where they did
+  std::uint64_t samples = 0;    // samples missed, from the time jump
+  std::uint64_t batches = 0;    // batch numbers skipped within a record
   std::string message() const;  // for the log, Health and the alert
 };
 

@@ -63,8 +63,8 @@ class FieldMutator {
 
   void operator()(std::string& s) {
     if (!hit()) return;
-    static const std::string kTexts[] = {"", std::string(5000, 'y'), std::string("a\0b", 3), "\xff\xfe", "/", "..",
-                                         "bearing-1"};
+    static const std::string kTexts[] = {
+        "", std::string(5000, 'y'), std::string("a\0b", 3), "\xff\xfe", "/", "..", "bearing-1"};
     if (pick(2) == 0)
       s = kTexts[pick(std::size(kTexts))];
     else
@@ -77,16 +77,17 @@ class FieldMutator {
     if (hit()) v = !v;
   }
   template <class Integer>
-    requires std::is_integral_v<Integer>
+  requires std::is_integral_v<Integer>
   void operator()(Integer& v) {
     if (!hit()) return;
     const auto shifted = [&](std::uint64_t by) { return static_cast<Integer>(static_cast<std::uint64_t>(v) + by); };
-    const Integer kValues[] = {0,          1,         std::numeric_limits<Integer>::max(), std::numeric_limits<Integer>::min(),
-                               shifted(1), shifted(7), shifted(std::uint64_t(-1))};
+    const Integer kValues[] = {
+        0,          1,          std::numeric_limits<Integer>::max(), std::numeric_limits<Integer>::min(),
+        shifted(1), shifted(7), shifted(std::uint64_t(-1))};
     v = kValues[pick(std::size(kValues))];
   }
   template <class Enum>
-    requires std::is_enum_v<Enum>
+  requires std::is_enum_v<Enum>
   void operator()(Enum& v) {
     if (hit()) v = static_cast<Enum>(pick(256));
   }
@@ -164,45 +165,113 @@ class FieldMutator {
 // The fields of each message, in IDL order.
 template <class V>
 void fields(PlantSamples& m, V& v) {
-  v(m.plant_id); v(m.seq); v(m.t0); v(m.sample_time); v(m.count); v(m.description_id);
-  v(m.y_names); v(m.u_names); v(m.r_names); v(m.y); v(m.u); v(m.r);
+  v(m.plant_id);
+  v(m.seq);
+  v(m.t0);
+  v(m.sample_time);
+  v(m.count);
+  v(m.description_id);
+  v(m.y_names);
+  v(m.u_names);
+  v(m.r_names);
+  v(m.y);
+  v(m.u);
+  v(m.r);
 }
 template <class V>
 void fields(PlantDescription& m, V& v) {
-  v(m.plant_id); v(m.description_id); v(m.model); v(m.parameters); v(m.sample_time); v(m.y_names);
-  v(m.u_names); v(m.r_names); v(m.operating_point); v(m.has_controller); v(m.controller);
+  v(m.plant_id);
+  v(m.description_id);
+  v(m.model);
+  v(m.parameters);
+  v(m.sample_time);
+  v(m.y_names);
+  v(m.u_names);
+  v(m.r_names);
+  v(m.operating_point);
+  v(m.has_controller);
+  v(m.controller);
 }
 template <class V>
 void fields(ExcitationCommand& m, V& v) {
-  v(m.plant_id); v(m.seq); v(m.kind); v(m.channels); v(m.amplitude); v(m.duration); v(m.seed); v(m.settings);
+  v(m.plant_id);
+  v(m.seq);
+  v(m.kind);
+  v(m.channels);
+  v(m.amplitude);
+  v(m.duration);
+  v(m.seed);
+  v(m.settings);
   v(m.frequencies);
 }
 template <class V>
 void fields(PlantSourceCommand& m, V& v) {
-  v(m.plant_id); v(m.seq); v(m.kind); v(m.target);
+  v(m.plant_id);
+  v(m.seq);
+  v(m.kind);
+  v(m.target);
 }
 template <class V>
 void fields(PlantSourceState& m, V& v) {
-  v(m.plant_id); v(m.time); v(m.kind); v(m.target); v(m.command_seq); v(m.command_accepted); v(m.message);
+  v(m.plant_id);
+  v(m.time);
+  v(m.kind);
+  v(m.target);
+  v(m.command_seq);
+  v(m.command_accepted);
+  v(m.message);
 }
 template <class V>
 void fields(IdentifiedModel& m, V& v) {
-  v(m.plant_id); v(m.seq); v(m.time); v(m.window); v(m.plant_model); v(m.method); v(m.sample_time);
-  v(m.discrete); v(m.continuous); v(m.parameters); v(m.physical); v(m.nrmse);
+  v(m.plant_id);
+  v(m.seq);
+  v(m.time);
+  v(m.window);
+  v(m.plant_model);
+  v(m.method);
+  v(m.sample_time);
+  v(m.discrete);
+  v(m.continuous);
+  v(m.parameters);
+  v(m.physical);
+  v(m.nrmse);
 }
 template <class V>
 void fields(FrequencyResponse& m, V& v) {
-  v(m.plant_id); v(m.kind); v(m.seq); v(m.time); v(m.outputs); v(m.inputs); v(m.frequencies); v(m.re); v(m.im);
-  v(m.peaks); v(m.zone);
+  v(m.plant_id);
+  v(m.kind);
+  v(m.seq);
+  v(m.time);
+  v(m.outputs);
+  v(m.inputs);
+  v(m.frequencies);
+  v(m.re);
+  v(m.im);
+  v(m.peaks);
+  v(m.zone);
 }
 template <class V>
 void fields(Alert& m, V& v) {
-  v(m.plant_id); v(m.fault); v(m.channel); v(m.time); v(m.level); v(m.parameter); v(m.value); v(m.baseline);
+  v(m.plant_id);
+  v(m.fault);
+  v(m.channel);
+  v(m.time);
+  v(m.level);
+  v(m.parameter);
+  v(m.value);
+  v(m.baseline);
   v(m.message);
 }
 template <class V>
 void fields(Health& m, V& v) {
-  v(m.node); v(m.role); v(m.time); v(m.level); v(m.message); v(m.received); v(m.published); v(m.errors);
+  v(m.node);
+  v(m.role);
+  v(m.time);
+  v(m.level);
+  v(m.message);
+  v(m.received);
+  v(m.published);
+  v(m.errors);
 }
 
 // One to three fields of `m` mutated.

@@ -11,12 +11,12 @@ namespace {
 
 constexpr int kIterations = 400;
 
-#define AMBID_FUZZ_TEST(Message, topic_name, qos_profile)                   \
-  TEST(FuzzBus, Message) {                                                  \
-    const FuzzCount c = fuzz_bus_message<bus::Message>(kIterations);       \
-    EXPECT_EQ(c.accepted + c.refused, kIterations);                         \
+#define AMBID_FUZZ_TEST(Message, topic_name, qos_profile)                    \
+  TEST(FuzzBus, Message) {                                                   \
+    const FuzzCount c = fuzz_bus_message<bus::Message>(kIterations);         \
+    EXPECT_EQ(c.accepted + c.refused, kIterations);                          \
     EXPECT_GT(c.refused, kIterations / 20) << "the mutations hardly matter"; \
-    EXPECT_GT(c.accepted, kIterations / 20) << "nothing valid got through"; \
+    EXPECT_GT(c.accepted, kIterations / 20) << "nothing valid got through";  \
   }
 AMBID_BUS_MESSAGES(AMBID_FUZZ_TEST)
 #undef AMBID_FUZZ_TEST

@@ -20,11 +20,11 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <map>
-#include <mutex>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <map>
+#include <mutex>
 #include <random>
 #include <set>
 #include <thread>

@@ -110,8 +110,9 @@ bool Stack::running(const std::string& daemon) {
   int status = 0;
   if (waitpid(it->second, &status, WNOHANG) == 0) return true;
   std::ofstream(dir_ / (daemon + ".log"), std::ios::app)
-      << "[test harness] process ended: " << (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
-                                                                  : "signal " + std::to_string(WTERMSIG(status)))
+      << "[test harness] process ended: "
+      << (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                            : "signal " + std::to_string(WTERMSIG(status)))
       << "\n";
   pids_.erase(it);
   return false;
