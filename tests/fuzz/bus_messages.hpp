@@ -5,7 +5,8 @@
 // duplicated) and handed to what the service does with it on receipt, as a foreign peer could
 // send it (readers do not validate: the middleware checks only the IDL bounds, if at all):
 //   PlantSamples        the identifier's gap check and described windows (windows validate)
-//   PlantDescription    the identifier's described windows, the diagnostics' change
+//   PlantDescription    (every other one with the hash of its mutated content as its id)
+//                       the identifier's described windows, the diagnostics' change
 //                       classification and (every 10th accepted) its fault signatures
 //   ExcitationCommand   the plant daemon's limits, then a sim source's excite()
 //   PlantSourceCommand  the plant daemon's source factory (sim and replay; a rig target would

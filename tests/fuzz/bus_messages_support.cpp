@@ -35,7 +35,23 @@ namespace ambid::fuzz {
 namespace {
 
 namespace fs = std::filesystem;
-using namespace ambid::bus;
+using bus::Alert;
+using bus::AlertLevel;
+using bus::ControllerDescription;
+using bus::Estimate;
+using bus::ExcitationCommand;
+using bus::FrequencyResponse;
+using bus::Health;
+using bus::IdentifiedModel;
+using bus::IsoZone;
+using bus::Matrix;
+using bus::NamedValue;
+using bus::PlantSamples;
+using bus::PlantSourceCommand;
+using bus::PlantSourceState;
+using bus::SensitivityPeak;
+using bus::SourceKind;
+using bus::StateSpace;
 
 // ---- Field-wise mutation ------------------------------------------------------------------
 
@@ -179,7 +195,7 @@ void fields(PlantSamples& m, V& v) {
   v(m.r);
 }
 template <class V>
-void fields(PlantDescription& m, V& v) {
+void fields(bus::PlantDescription& m, V& v) {
   v(m.plant_id);
   v(m.description_id);
   v(m.model);
@@ -323,8 +339,8 @@ const Experiment& record() {
   return e;
 }
 
-const PlantDescription& description() {
-  static const PlantDescription d = convert::describe(record(), kPlant);
+const bus::PlantDescription& description() {
+  static const bus::PlantDescription d = convert::describe(record(), kPlant);
   return d;
 }
 
@@ -379,10 +395,14 @@ struct Target<PlantSamples> {
 };
 
 template <>
-struct Target<PlantDescription> {
-  std::vector<PlantDescription> corpus() const { return {description()}; }
-  int accepted = 0;
-  void consume(const PlantDescription& m) {
+struct Target<bus::PlantDescription> {
+  std::vector<bus::PlantDescription> corpus() const { return {description()}; }
+  int inputs = 0, accepted = 0;
+  void consume(const bus::PlantDescription& received) {
+    // Every other input carries the hash of its mutated content, as a peer that means it
+    // would send: the checks behind the id check see it too.
+    bus::PlantDescription m = received;
+    if (inputs++ % 2 == 0) m.description_id = convert::description_id(m);
     daemons::DescribedWindows windows({.window = 0.025, .settle = 0.0});
     windows.describe(m);
     if (daemons::classify(&description(), m) == daemons::DescriptionChange::bearing)
