@@ -41,6 +41,11 @@ std::string http_get(int port, const std::string& path) {
   return body == std::string::npos ? std::string{} : response.substr(body + 4);
 }
 
+double metric(const std::string& text, const std::string& line) {
+  const auto at = text.find(line + " ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
+}
+
 Stack::Stack(const std::string& name, int domain, const std::map<std::string, std::string>& vendors)
     : dir_(fs::path(AMBID_BINARY_DIR) / "test-output" / name), domain_(domain), vendors_(vendors) {
   fs::remove_all(dir_);

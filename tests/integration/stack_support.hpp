@@ -18,6 +18,8 @@ using cli_test::run_ambid;
 
 // The body of http://127.0.0.1:PORT/PATH (empty when nothing answers).
 std::string http_get(int port, const std::string& path);
+// The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
+double metric(const std::string& text, const std::string& line);
 
 class Stack {
  public:
