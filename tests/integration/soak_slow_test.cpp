@@ -136,7 +136,8 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
 
   sleep_s(3.0);
   const std::string replay = (stack.dir() / "recorded").string();
-  ASSERT_EQ(stack.ambid("record --out " + replay + " --duration 2").status, 0) << stack.log("plant");
+  const CommandResult recorded = stack.ambid("record --out " + replay + " --duration 0.5");
+  ASSERT_EQ(recorded.status, 0) << recorded.output << stack.log("plant");
 
   Garbage garbage(random);
   const int dds_first_port = 7400 + 250 * kDomain;
@@ -196,9 +197,10 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   for (const bus::Alert& a : alerts) {
     gaps += a.fault == "history_gap";
     stale += a.level == bus::AlertLevel::stale;
-    if (a.level == bus::AlertLevel::warn || a.level == bus::AlertLevel::error)
+    if (a.level == bus::AlertLevel::warn || a.level == bus::AlertLevel::error) {
       EXPECT_EQ(a.fault, "history_gap") << convert::level_name(a.level) << " " << a.parameter << " " << a.fault
                                         << " at " << a.time << ": " << a.message;
+    }
   }
   std::cout << "  history_gap alerts: " << gaps << ", STALE alerts: " << stale << "\n";
 
