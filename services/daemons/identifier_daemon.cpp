@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
-#include "services/daemons/sample_gaps.hpp"
+#include "services/daemons/sample_gap_report.hpp"
 #include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
@@ -57,7 +57,6 @@ int run_identifier_daemon(const DaemonOptions& options) {
   auto samples = bus->reader<bus::PlantSamples>();
   auto descriptions = bus->reader<bus::PlantDescription>();
   auto models = bus->writer<bus::IdentifiedModel>();
-  auto alerts = bus->writer<bus::Alert>();
   prometheus::Histogram& identification_seconds =
       runtime.metrics.histogram("ambid_identification_seconds", "wall time of one window's identification",
                                 {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
@@ -70,25 +69,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
   WindowSteps steps(runtime, dropped_help);
   WindowFailures failures(config.failures, runtime.metrics);
-  SampleGaps gaps;
-  prometheus::Counter& missed_samples =
-      runtime.metrics.counter("ambid_samples_missed_total", "samples never received (a hole in the history)", {});
-  // A hole in the samples (sample_gaps.hpp): logged, counted, Health WARN and an alert.
-  auto report_gap = [&](const SampleGap& gap) {
-    bus::Alert a;
-    a.plant_id = options.plant_id;
-    a.fault = "history_gap";
-    a.parameter = "samples";
-    a.level = bus::AlertLevel::warn;
-    a.time = gap.to;
-    a.value = gap.to - gap.from;  // s of plant time never received
-    a.message = gap.message().substr(0, bus::limits::text_length);
-    alerts->write(a);
-    runtime.metrics.published.Increment();
-    missed_samples.Increment(double(gap.samples));
-    runtime.log(a.message);
-    runtime.set_health(bus::AlertLevel::warn, a.message);
-  };
+  SampleGapReport gaps(*bus, runtime, options.plant_id);  // holes in the samples
   runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
                 "; plant description from the bus");
   std::uint64_t seq = 0;
@@ -100,7 +81,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
       if (batch.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
-      if (const std::optional<SampleGap> gap = gaps.check(batch)) report_gap(*gap);
+      gaps.check(batch);
       steps.report(window.add(batch));
       while (window.full()) {
         const Experiment w = window.take();

@@ -192,16 +192,17 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   for (const auto& [what, n] : actions) std::cout << "  " << what << ": " << n << "\n";
   std::cout << "  garbage datagrams: " << garbage.sent() << ", alerts: " << alerts.size() << "\n";
 
-  // No false alert.
-  std::size_t gaps = 0, stale = 0;
+  // No false alert (the first few are shown).
+  std::size_t gaps = 0, stale = 0, false_alerts = 0;
   for (const bus::Alert& a : alerts) {
     gaps += a.fault == "history_gap";
     stale += a.level == bus::AlertLevel::stale;
-    if (a.level == bus::AlertLevel::warn || a.level == bus::AlertLevel::error) {
-      EXPECT_EQ(a.fault, "history_gap") << convert::level_name(a.level) << " " << a.parameter << " " << a.fault
-                                        << " at " << a.time << ": " << a.message;
-    }
+    if ((a.level == bus::AlertLevel::warn || a.level == bus::AlertLevel::error) && a.fault != "history_gap" &&
+        ++false_alerts <= 10)
+      ADD_FAILURE() << "false alert: " << convert::level_name(a.level) << " " << a.parameter << " " << a.fault << " at "
+                    << a.time << ": " << a.message;
   }
+  EXPECT_EQ(false_alerts, 0u);
   std::cout << "  history_gap alerts: " << gaps << ", STALE alerts: " << stale << "\n";
 
   // Every hole in the history named by an alert. Models come every 0.25 s within a record and
