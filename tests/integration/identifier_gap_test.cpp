@@ -28,10 +28,10 @@ TEST(IdentifierGap, AStalledIdentifierAlertsTheSamplesItMissed) {
   EXPECT_THAT(gap.output, HasSubstr("bearing-1  samples  history_gap"));
   EXPECT_THAT(gap.output, HasSubstr("a hole in the identified history"));
   EXPECT_THAT(stack.log("identifier"), HasSubstr("a hole in the identified history"));
-  // Most of the stall is missed: the samples topic kept 64 batches (3.2 s of plant time).
-  const double missed =
-      metric(http_get(19213, "/metrics"), "ambid_samples_missed_total{role=\"identifier\"}");
-  EXPECT_GT(missed, 15.0 / 1e-4) << "samples of 1e-4 s";
+  // Seconds of plant time are missed (the samples topic kept 64 batches, 3.2 s; 3 s of wall
+  // time are up to 30 s of plant time, less when this machine slows the plant down).
+  const double missed = metric(http_get(19213, "/metrics"), "ambid_samples_missed_total{role=\"identifier\"}");
+  EXPECT_GT(missed, 5.0 / 1e-4) << "samples of 1e-4 s";
   const CommandResult status = stack.ambid("status --wait 2 --expect plant,identifier");
   EXPECT_THAT(status.output, HasSubstr("identifier): WARN missed")) << status.output;
   EXPECT_TRUE(stack.running("identifier"));
