@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <new>
 #include <optional>
 
 #include "core/error.hpp"
 #include "core/format/csv_lines.hpp"
 #include "core/format/experiment_text.hpp"
+#include "core/format/file_lines.hpp"
 #include "core/format/resample.hpp"
 
 namespace ambid {
@@ -74,75 +76,113 @@ void resample_uniform(Eigen::VectorXd& t, Eigen::MatrixXd& values, double T, std
   resample_linear(t, values, T);
 }
 
+// The data rows a second pass can expect: the non-blank lines after the header, up to the
+// first whose number of cells differs from the header's (the second pass refuses it there).
+// Counting cells keeps a file of short garbage lines from sizing arrays far beyond its bytes.
+Eigen::Index count_rows(const std::filesystem::path& file) {
+  FileLines lines(file);
+  const auto header = lines.next();
+  if (!header) return 0;
+  const auto commas = std::count(header->begin(), header->end(), ',');
+  Eigen::Index rows = 0;
+  while (const auto line = lines.next()) {
+    if (is_blank(*line)) continue;
+    if (std::count(line->begin(), line->end(), ',') != commas) break;
+    ++rows;
+  }
+  return rows;
+}
+
+template <class Array>
+Array allocate(Eigen::Index rows, Eigen::Index cols) {
+  try {
+    return Array(rows, cols);
+  } catch (const std::bad_alloc&) {
+    throw Error(std::to_string(rows) + " rows of " + std::to_string(cols) + " signals need " +
+                std::to_string(double(rows) * double(cols) * 8e-9) + " GB of memory, more than there is");
+  }
+}
+
 }  // namespace
 
-void parse_samples_csv(std::string_view text, const ReadOptions& options, Experiment& e,
-                       std::vector<std::string>& warnings) {
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);  // UTF-8 byte order mark
-  Lines lines(text);
-  const auto header_line = lines.next();
+void read_samples_csv(const std::filesystem::path& file, const ReadOptions& options, Experiment& e,
+                      std::vector<std::string>& warnings) {
+  const Eigen::Index capacity = count_rows(file);
+  FileLines lines(file);
+  std::optional<std::string_view> header_line = lines.next();
+  if (header_line && header_line->substr(0, 3) == "\xEF\xBB\xBF") header_line->remove_prefix(3);  // UTF-8 BOM
   if (!header_line || is_blank(*header_line))
     throw Error(at(1) + ": expected a header line of column names starting with 't', got an empty line");
-  std::vector<std::string_view> header;
-  split_cells(*header_line, header);
-  const std::vector<std::size_t> columns = locate_columns(header, e, warnings);
+  std::vector<std::string_view> cells;  // views into `lines`: valid until its next line
+  split_cells(*header_line, cells);
+  const std::size_t header_cells = cells.size();
+  const std::vector<std::size_t> columns = locate_columns(cells, e, warnings);
   const std::vector<std::string> names = e.signal_names();
 
-  // Row-major samples: t then the signals in signal_names() order.
-  const std::size_t stride = columns.size() + 1;
-  std::vector<double> data;
-  std::vector<std::size_t> line_of_row;
-  std::vector<std::string_view> cells;
-  while (const auto line = lines.next()) {
-    if (is_blank(*line)) {
-      if (lines.rest_is_blank()) break;  // blank lines at the end of the file are harmless
-      throw Error(at(lines.number()) + " is empty; expected " + std::to_string(header.size()) + " cells");
-    }
-    split_cells(*line, cells);
-    if (cells.size() != header.size())
-      throw Error(at(lines.number()) + " has " + std::to_string(cells.size()) + " cells, the header has " +
-                  std::to_string(header.size()) + " (a ',' decimal point or thousands separator splits a number)");
-    const double t = parse_cell(cells[0], lines.number(), "t");
-    if (!line_of_row.empty() && !(t > data[data.size() - stride]))
-      throw Error(at(lines.number()) + ": t = " + quote_excerpt(cells[0]) +
-                  " is not greater than t = " + number_text(data[data.size() - stride]) + " on " +
-                  at(line_of_row.back()) + "; t must be strictly increasing");
-    data.push_back(t);
-    for (std::size_t s = 0; s < columns.size(); ++s)
-      data.push_back(parse_cell(cells[columns[s]], lines.number(), names[s]));
-    line_of_row.push_back(lines.number());
-  }
-  const auto rows = static_cast<Eigen::Index>(line_of_row.size());
-  if (rows < 2) throw Error("has " + std::to_string(rows) + " data rows; at least 2 are needed");
-
-  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> table(
-      data.data(), rows, static_cast<Eigen::Index>(stride));
-  Eigen::VectorXd t = table.col(0);
-  Eigen::MatrixXd values = table.rightCols(static_cast<Eigen::Index>(columns.size()));
-  const double T = e.sample_time;
-  if (const auto gap = find_sampling_gap(t, T)) {
-    const std::size_t line = line_of_row[static_cast<std::size_t>(*gap)];
-    const std::string where = "t jumps by " + number_text(t(*gap) - t(*gap - 1)) + " s from " +
-                              number_text(t(*gap - 1)) + " (" + at(line_of_row[static_cast<std::size_t>(*gap - 1)]) +
-                              ") to " + number_text(t(*gap)) + " (" + at(line) + ")";
-    if (!options.resample)
-      throw Error(at(line) + ": sampling is not uniform: " + where + "; every step must be sample_time " +
-                  number_text(T) + " s within 1 % (reading with resampling interpolates onto a uniform grid)");
-    resample_uniform(t, values, T, line_of_row.back());
-    if (t.size() < 2)
-      throw Error("spans " + number_text(table(rows - 1, 0) - table(0, 0)) + " s, less than one sample_time " +
-                  number_text(T) + " s; resampling leaves 1 sample, at least 2 are needed");
-    warnings.push_back("sampling is not uniform (first at " + at(line) + ": " + where + "); resampled " +
-                       std::to_string(rows) + " rows onto " + std::to_string(t.size()) + " samples every " +
-                       number_text(T) + " s by linear interpolation");
-  }
+  // The arrays are sized once from the first pass and filled in place: memory is the samples'
+  // 8 bytes x (1 + signals) per row, never the file's text or a growing copy.
   const auto ny = static_cast<Eigen::Index>(e.y_names.size());
   const auto nu = static_cast<Eigen::Index>(e.u_names.size());
   const auto nr = static_cast<Eigen::Index>(e.r_names.size());
+  Eigen::VectorXd t = allocate<Eigen::VectorXd>(capacity, 1);
+  e.y = allocate<Eigen::MatrixXd>(capacity, ny);
+  e.u = allocate<Eigen::MatrixXd>(capacity, nu);
+  e.r = allocate<Eigen::MatrixXd>(capacity, nr);
+  Eigen::MatrixXd* const groups[] = {&e.y, &e.u, &e.r};
+  const Eigen::Index first_column[] = {0, ny, ny + nu};
+  Eigen::Index rows = 0;
+  std::size_t blank_line = 0;  // a blank line, harmless only at the end of the file
+  while (const auto line = lines.next()) {
+    if (is_blank(*line)) {
+      if (blank_line == 0) blank_line = lines.number();
+      continue;
+    }
+    if (blank_line != 0) throw Error(at(blank_line) + " is empty; expected " + std::to_string(header_cells) + " cells");
+    split_cells(*line, cells);
+    if (cells.size() != header_cells)
+      throw Error(at(lines.number()) + " has " + std::to_string(cells.size()) + " cells, the header has " +
+                  std::to_string(header_cells) + " (a ',' decimal point or thousands separator splits a number)");
+    if (rows == capacity) throw Error(at(lines.number()) + ": the file changed while it was read");
+    const double time = parse_cell(cells[0], lines.number(), "t");
+    if (rows > 0 && !(time > t(rows - 1)))
+      throw Error(at(lines.number()) + ": t = " + quote_excerpt(cells[0]) + " is not greater than t = " +
+                  number_text(t(rows - 1)) + " on " + at(lines.number() - 1) + "; t must be strictly increasing");
+    t(rows) = time;
+    for (std::size_t g = 0, s = 0; g < 3; ++g)
+      for (Eigen::Index j = 0; j < groups[g]->cols(); ++j, ++s)
+        (*groups[g])(rows, j) = parse_cell(cells[columns[s]], lines.number(), names[s]);
+    ++rows;
+  }
+  if (rows < 2) throw Error("has " + std::to_string(rows) + " data rows; at least 2 are needed");
+  if (rows != capacity)
+    throw Error("the file changed while it was read (" + std::to_string(rows) + " rows, " + std::to_string(capacity) +
+                " before)");
+  // Rows are the lines after the header, one each: row k is on line k + 2.
+  const auto line_of_row = [](Eigen::Index k) { return std::size_t(k) + 2; };
+  const double T = e.sample_time;
+  if (const auto gap = find_sampling_gap(t, T)) {
+    const std::size_t line = line_of_row(*gap);
+    const std::string where = "t jumps by " + number_text(t(*gap) - t(*gap - 1)) + " s from " +
+                              number_text(t(*gap - 1)) + " (" + at(line - 1) + ") to " + number_text(t(*gap)) + " (" +
+                              at(line) + ")";
+    if (!options.resample)
+      throw Error(at(line) + ": sampling is not uniform: " + where + "; every step must be sample_time " +
+                  number_text(T) + " s within 1 % (reading with resampling interpolates onto a uniform grid)");
+    // Resampling works on one table of all signals (a copy: the one path that needs more
+    // memory than the samples).
+    const double span = t(rows - 1) - t(0);
+    Eigen::MatrixXd values(rows, ny + nu + nr);
+    for (std::size_t g = 0; g < 3; ++g) values.middleCols(first_column[g], groups[g]->cols()) = *groups[g];
+    resample_uniform(t, values, T, line_of_row(rows - 1));
+    if (t.size() < 2)
+      throw Error("spans " + number_text(span) + " s, less than one sample_time " + number_text(T) +
+                  " s; resampling leaves 1 sample, at least 2 are needed");
+    warnings.push_back("sampling is not uniform (first at " + at(line) + ": " + where + "); resampled " +
+                       std::to_string(rows) + " rows onto " + std::to_string(t.size()) + " samples every " +
+                       number_text(T) + " s by linear interpolation");
+    for (std::size_t g = 0; g < 3; ++g) *groups[g] = values.middleCols(first_column[g], groups[g]->cols());
+  }
   e.t = std::move(t);
-  e.y = values.leftCols(ny);
-  e.u = values.middleCols(ny, nu);
-  e.r = values.rightCols(nr);
 }
 
 std::string samples_csv(const Experiment& e) {

@@ -1,5 +1,6 @@
 #include "core/experiment_io.hpp"
 
+#include <string_view>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -29,13 +30,15 @@ ExperimentFiles files_of(const std::filesystem::path& path) {
   return files;
 }
 
-// Runs `parse`, prefixing any Error and every new warning with the file name.
+// Runs `parse`, prefixing every new warning and any Error that does not name the file yet (a
+// file-system error does) with the file name.
 template <typename Parse>
 void in_file(const std::filesystem::path& file, std::vector<std::string>& warnings, Parse parse) {
   std::vector<std::string> local;
   try {
     parse(local);
   } catch (const Error& e) {
+    if (std::string_view(e.what()).find(file.string()) != std::string_view::npos) throw;
     throw Error(file.string() + ": " + e.what());
   }
   for (auto& w : local) warnings.push_back(file.string() + ": " + w);
@@ -50,9 +53,8 @@ ReadResult read_experiment(const std::filesystem::path& path, const ReadOptions&
   in_file(files.json, result.warnings, [&](std::vector<std::string>& warnings) {
     result.experiment = parse_sidecar(parse_sidecar_text(sidecar_text), warnings);
   });
-  const std::string csv_text = read_text_file(files.csv);
   in_file(files.csv, result.warnings, [&](std::vector<std::string>& warnings) {
-    parse_samples_csv(csv_text, options, result.experiment, warnings);
+    read_samples_csv(files.csv, options, result.experiment, warnings);
     ControllerReplay replay = clamped_samples(result.experiment);
     result.clamped = std::move(replay.clamped);
     result.clamped_samples = replay.clamped_samples;

@@ -28,15 +28,15 @@ struct DiagnosticsConfig {
   diag::EngineConfig engine;
   double silence = 3.0;
   diag::RetentionPolicy retention;
+  double retention_period = 600.0;  // plant seconds between two passes of the retention
 };
 
 constexpr double kDay = 86400.0;
-constexpr double kRetentionPeriod = 600.0;  // plant seconds between two passes of the retention
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "diagnostics config",
                       {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence",
-                       "keep_windows_days", "aggregate_bucket", "keep_days"});
+                       "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
@@ -48,7 +48,10 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   c.retention.aggregate_after = config_value(j, "keep_windows_days", 7.0) * kDay;
   c.retention.bucket = config_value(j, "aggregate_bucket", 3600.0);
   c.retention.max_age = config_value(j, "keep_days", 365.0) * kDay;
+  c.retention_period = config_value(j, "retention_period", c.retention_period);
   c.retention.validate();
+  if (!(c.retention_period > 0 && std::isfinite(c.retention_period)))
+    throw Error("diagnostics config: retention_period must be > 0 s, got " + std::to_string(c.retention_period));
   c.engine.validate();
   if (!(c.silence > 0)) throw Error("diagnostics config: silence must be > 0 s, got " + std::to_string(c.silence));
   return c;
@@ -119,7 +122,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
   PlantTime plant_time;
   std::optional<double> last_retention;  // plant time of the last retention pass
   auto retain = [&](double now) {
-    if (last_retention && now - *last_retention < kRetentionPeriod) return;
+    if (last_retention && now - *last_retention < config.retention_period) return;
     last_retention = now;
     try {
       const diag::RetentionReport r = store.apply_retention(config.retention, now);
@@ -155,24 +158,32 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     for (const bus::IdentifiedModel& m : models->take()) {
       if (m.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
+      const std::optional<double> previous = plant_time.last();
       const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
       if (!at) continue;  // already processed (a late-joiner replay)
-      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
-        // This daemon fell behind or was stopped: the models in between are gone for good.
+      auto history_gap = [&](const std::string& message) {
         bus::Alert a;
         a.plant_id = options.plant_id;
         a.fault = "history_gap";
         a.parameter = "all";
         a.level = bus::AlertLevel::warn;
         a.time = at->time;
-        a.message = "missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
-                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
-                    " s: a hole in the trend history";
+        a.message = message.substr(0, bus::limits::text_length);
         alerts->write(a);
         runtime.metrics.published.Increment();
-        missed_models.Increment(double(missed));
         runtime.log(a.message);
         runtime.set_health(bus::AlertLevel::warn, a.message);
+      };
+      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
+        // This daemon fell behind or was stopped: the models in between are gone for good.
+        missed_models.Increment(double(missed));
+        history_gap("missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
+                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
+                    " s: a hole in the trend history");
+      } else if (gaps.restarted() && !at->after_restart && previous && at->time - *previous > 4.0 * m.window) {
+        // A restarted identifier numbers from 0 again; the plant ran on meanwhile, unidentified.
+        history_gap("the identifier restarted: no models from plant time " + std::to_string(*previous) + " to " +
+                    std::to_string(at->time - m.window) + " s, a hole in the trend history");
       }
       if (at->after_restart) {
         const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +

@@ -6,10 +6,18 @@
 // stale timeout; the next model brings it back to OK. When the identifier's Health says its
 // windows keep failing (window_failures.hpp) every parameter is marked STALE at once, naming
 // the reason; again the next model brings it back.
+// A hole in the history is logged and raised as a WARN alert history_gap (parameter "all"):
+// a jump in the model numbers (this daemon fell behind or was stopped; model_gaps.hpp) or a
+// restarted identifier (numbers from 0 again) whose first model comes more than 4 windows of
+// plant time after the last one.
 //
 // Config (JSON, every key optional):
 //   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,
-//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall)}
+//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
+//    retention of the trend store (diag::RetentionPolicy): "keep_windows_days": 7 (per-window
+//    estimates, then aggregated), "aggregate_bucket": 3600 (s per aggregate), "keep_days": 365,
+//    "retention_period": 600 (s of plant time between two passes; the first pass runs at the
+//    first model)}
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
+#include "services/daemons/sample_gap_report.hpp"
 #include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
@@ -68,6 +69,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
   WindowSteps steps(runtime, dropped_help);
   WindowFailures failures(config.failures, runtime.metrics);
+  SampleGapReport gaps(*bus, runtime, options.plant_id);  // holes in the samples
   runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
                 "; plant description from the bus");
   std::uint64_t seq = 0;
@@ -79,6 +81,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
       if (batch.plant_id != options.plant_id) continue;
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
+      gaps.check(batch);
       steps.report(window.add(batch));
       while (window.full()) {
         const Experiment w = window.take();

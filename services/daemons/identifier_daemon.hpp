@@ -16,6 +16,9 @@
 // (ambid_windows_unidentified_total{reason}); while windows keep failing Health is WARN
 // "windows not identified: ..." naming the last reason, and OK "windows identified again" after.
 // The diagnostics daemon marks the parameters STALE on that WARN.
+// Samples that never arrived (a jump in the plant's clock or the batch numbers:
+// sample_gaps.hpp) are logged, counted (ambid_samples_missed_total), set Health WARN and raise
+// a WARN alert history_gap (parameter "samples"): the hole in the history is visible.
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

@@ -12,9 +12,12 @@ class ModelGaps {
   // How many models were missed before the model numbered `seq`; a number at or below the last
   // one (a restarted identifier) starts the count again.
   std::uint64_t missed(std::uint64_t seq);
+  // The last number given to missed() started the count again (not the first one seen).
+  bool restarted() const { return restarted_; }
 
  private:
   std::optional<std::uint64_t> last_;
+  bool restarted_ = false;
 };
 
 }  // namespace ambid::daemons

@@ -11,6 +11,7 @@
 #include "services/convert/plant_samples.hpp"
 #include "services/convert/source_kind.hpp"
 #include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/excitation_limits.hpp"
 #include "services/daemons/plant_source.hpp"
 #include "services/daemons/rig_source.hpp"
 
@@ -22,8 +23,7 @@ struct PlantConfig {
   std::string target;
   Eigen::Index batch_samples = 500;
   double speed = 10.0;
-  double max_amplitude = 0.5;
-  double max_frequency = 2000.0;
+  ExcitationLimits excitation;
   RigSettings rig;
   std::string rig_description;  // sidecar JSON: the plant description of the rig's board
 };
@@ -37,8 +37,8 @@ PlantConfig plant_config(const nlohmann::json& j) {
   c.target = config_value<std::string>(j, "target", "");
   c.batch_samples = config_value(j, "batch_samples", 500);
   c.speed = config_value(j, "speed", c.speed);
-  c.max_amplitude = config_value(j, "max_amplitude", c.max_amplitude);
-  c.max_frequency = config_value(j, "max_frequency", c.max_frequency);
+  c.excitation.max_amplitude = config_value(j, "max_amplitude", c.excitation.max_amplitude);
+  c.excitation.max_frequency = config_value(j, "max_frequency", c.excitation.max_frequency);
   c.rig.silence = config_value(j, "rig_silence", c.rig.silence);
   c.rig.reply_timeout = config_value(j, "rig_reply_timeout", c.rig.reply_timeout);
   c.rig.allow_remote = config_value(j, "rig_allow_remote", c.rig.allow_remote);
@@ -54,19 +54,6 @@ PlantConfig plant_config(const nlohmann::json& j) {
   return c;
 }
 
-// Empty when the command is within the limits, else why it is refused.
-std::string excitation_violation(const bus::ExcitationCommand& c, const PlantConfig& limits) {
-  static const std::vector<std::string> kinds{"prbs", "multisine", "chirp", "stepped_sine", "none"};
-  if (std::find(kinds.begin(), kinds.end(), c.kind) == kinds.end())
-    return "unknown excitation kind '" + c.kind + "' (known: prbs, multisine, chirp, stepped_sine, none)";
-  if (!(c.amplitude >= 0 && c.amplitude <= limits.max_amplitude))
-    return "amplitude " + std::to_string(c.amplitude) + " V outside 0.." + std::to_string(limits.max_amplitude) + " V";
-  for (double f : c.frequencies)
-    if (!(f > 0 && f <= limits.max_frequency))
-      return "frequency " + std::to_string(f) + " Hz outside (0, " + std::to_string(limits.max_frequency) + "] Hz";
-  return {};
-}
-
 class PlantDaemon {
  public:
   PlantDaemon(const DaemonOptions& o, const PlantConfig& c)
@@ -77,6 +64,7 @@ class PlantDaemon {
         samples_(bus_->writer<bus::PlantSamples>()),
         descriptions_(bus_->writer<bus::PlantDescription>()),
         state_(bus_->writer<bus::PlantSourceState>()),
+        alerts_(bus_->writer<bus::Alert>()),
         source_commands_(bus_->reader<bus::PlantSourceCommand>()),
         excitation_commands_(bus_->reader<bus::ExcitationCommand>()),
         rig_description_(c.rig_description.empty() ? std::nullopt : std::optional(read_sidecar(c.rig_description))),
@@ -184,11 +172,10 @@ class PlantDaemon {
     for (const bus::ExcitationCommand& c : excitation_commands_->take()) {
       if (c.plant_id != options_.plant_id) continue;
       runtime_.metrics.received.Increment();
-      std::string refusal = source_ ? excitation_violation(c, config_) : "no source is running";
+      std::string refusal = source_ ? excitation_violation(c, config_.excitation) : "no source is running";
       if (refusal.empty()) {
         try {
-          const auto [lo, hi] = std::minmax_element(c.frequencies.begin(), c.frequencies.end());
-          source_->excite({c.kind, c.amplitude, c.frequencies.empty() ? 0.0 : *lo, c.frequencies.empty() ? 0.0 : *hi});
+          source_->excite(excitation_request(c));
         } catch (const Error& e) {
           refusal = e.what();
         }
@@ -206,13 +193,22 @@ class PlantDaemon {
 
   // A source that fails after it was accepted (a later simulated record diverges, a replay
   // file vanished) stops; the daemon falls back to the source before it, or waits for the
-  // next command. Health ERROR tells the operator either way.
+  // next command. Health ERROR and an ERROR alert (source_failed) tell the operator either way.
   void source_failed(const std::string& reason) {
     const std::string message =
         "failed: " + reason +
         (previous_ ? "; back to the previous source" : "; no samples until the next source command");
     announce(last_source_command_, false, message);
     runtime_.set_health(bus::AlertLevel::error, "source " + source_->target() + " " + message);
+    bus::Alert a;
+    a.plant_id = options_.plant_id;
+    a.fault = "source_failed";
+    a.parameter = "source";
+    a.level = bus::AlertLevel::error;
+    a.time = clock_;
+    a.message = ("source " + source_->target() + " " + message).substr(0, bus::limits::text_length);
+    alerts_->write(a);
+    runtime_.metrics.published.Increment();
     source_ = std::move(previous_);
     row_ = record_.samples();
     pace_start_ = std::chrono::steady_clock::now();
@@ -241,6 +237,7 @@ class PlantDaemon {
   std::unique_ptr<bus::Writer<bus::PlantSamples>> samples_;
   std::unique_ptr<bus::Writer<bus::PlantDescription>> descriptions_;
   std::unique_ptr<bus::Writer<bus::PlantSourceState>> state_;
+  std::unique_ptr<bus::Writer<bus::Alert>> alerts_;
   std::unique_ptr<bus::Reader<bus::PlantSourceCommand>> source_commands_;
   std::unique_ptr<bus::Reader<bus::ExcitationCommand>> excitation_commands_;
   std::optional<Experiment> rig_description_;

@@ -67,9 +67,10 @@ std::unique_ptr<PlantSource> make_plant_source(bus::SourceKind kind, const std::
     case bus::SourceKind::replay:
       return std::make_unique<ReplaySource>(target);
     case bus::SourceKind::rig:
-      break;
+      return make_rig_source(target, context);
   }
-  return make_rig_source(target, context);
+  // A foreign peer's enum value out of range was taken for a rig address (a 3 s HELLO wait).
+  throw Error("unknown source kind " + std::to_string(static_cast<int>(kind)));
 }
 
 }  // namespace ambid::daemons

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +11,7 @@
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
 #include "plant_sim/scenario.hpp"
+#include "services/daemons/scenario_json.hpp"
 #include "services/rig/rig_frame.hpp"
 
 namespace ambid::fuzz {
@@ -140,6 +142,18 @@ FuzzCount fuzz_model_json(int iterations) {
   return fuzz({model_text()}, iterations, 13, [&](const std::string& text) {
     write(path, text);
     read_model(path);
+  });
+}
+
+FuzzCount fuzz_scenario_json(int iterations) {
+  std::vector<std::string> corpus{read_text_file(fs::path(AMBID_SOURCE_DIR) / "deploy/config/nominal-bearing.json")};
+  for (const auto& entry : fs::directory_iterator(fs::path(AMBID_SOURCE_DIR) / "tests/integration/scenarios"))
+    if (entry.path().extension() == ".json") corpus.push_back(read_text_file(entry.path()));
+  std::sort(corpus.begin(), corpus.end());  // the directory's order is the file system's
+  const fs::path path = scratch().file("scenario.json");
+  return fuzz(corpus, iterations, 15, [&](const std::string& text) {
+    write(path, text);
+    daemons::read_scenario_file(path.string());
   });
 }
 

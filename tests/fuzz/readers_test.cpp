@@ -17,6 +17,7 @@ void expect_both_outcomes(const FuzzCount& c) {
 TEST(Fuzz, ExperimentCsv) { expect_both_outcomes(fuzz_experiment_csv(kIterations)); }
 TEST(Fuzz, ExperimentSidecar) { expect_both_outcomes(fuzz_experiment_sidecar(kIterations)); }
 TEST(Fuzz, ModelJson) { expect_both_outcomes(fuzz_model_json(kIterations)); }
+TEST(Fuzz, ScenarioJson) { expect_both_outcomes(fuzz_scenario_json(kIterations)); }
 TEST(Fuzz, RigFrame) { expect_both_outcomes(fuzz_rig_frame(kIterations)); }
 
 }  // namespace

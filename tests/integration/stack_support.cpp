@@ -41,6 +41,11 @@ std::string http_get(int port, const std::string& path) {
   return body == std::string::npos ? std::string{} : response.substr(body + 4);
 }
 
+double metric(const std::string& text, const std::string& line) {
+  const auto at = text.find(line + " ");
+  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
+}
+
 Stack::Stack(const std::string& name, int domain, const std::map<std::string, std::string>& vendors)
     : dir_(fs::path(AMBID_BINARY_DIR) / "test-output" / name), domain_(domain), vendors_(vendors) {
   fs::remove_all(dir_);
@@ -103,6 +108,20 @@ void Stack::kill(const std::string& daemon) {
 void Stack::pause(const std::string& daemon) { ::kill(pids_.at(daemon), SIGSTOP); }
 
 void Stack::resume(const std::string& daemon) { ::kill(pids_.at(daemon), SIGCONT); }
+
+bool Stack::running(const std::string& daemon) {
+  const auto it = pids_.find(daemon);
+  if (it == pids_.end()) return false;
+  int status = 0;
+  if (waitpid(it->second, &status, WNOHANG) == 0) return true;
+  std::ofstream(dir_ / (daemon + ".log"), std::ios::app)
+      << "[test harness] process ended: "
+      << (WIFEXITED(status) ? "exit " + std::to_string(WEXITSTATUS(status))
+                            : "signal " + std::to_string(WTERMSIG(status)))
+      << "\n";
+  pids_.erase(it);
+  return false;
+}
 
 CommandResult Stack::ambid(const std::string& args) const {
   return run_ambid(args + " --domain " + std::to_string(domain_));

@@ -18,6 +18,8 @@ using cli_test::run_ambid;
 
 // The body of http://127.0.0.1:PORT/PATH (empty when nothing answers).
 std::string http_get(int port, const std::string& path);
+// The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
+double metric(const std::string& text, const std::string& line);
 
 class Stack {
  public:
@@ -33,6 +35,8 @@ class Stack {
   void kill(const std::string& daemon);    // SIGKILL: no goodbye on the bus
   void pause(const std::string& daemon);   // SIGSTOP: alive but deaf, as a stalled process
   void resume(const std::string& daemon);  // SIGCONT
+  // False when the daemon's process has ended (then forgotten, with its exit status logged).
+  bool running(const std::string& daemon);
   // `ambid ARGS --domain D` against this stack.
   CommandResult ambid(const std::string& args) const;
   const std::filesystem::path& dir() const { return dir_; }

@@ -47,12 +47,6 @@ void expect_coil1_error(Stack& stack) {
   EXPECT_NEAR(std::stod(alerts.output.substr(value + 8)), 21.0, 0.05 * 21.0) << alerts.output;
 }
 
-// The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
-double metric(const std::string& text, const std::string& line) {
-  const auto at = text.find(line + " ");
-  return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
-}
-
 TEST(Stack, CoilFaultGivesErrorAlertNamingCoil1Resistance) {
   Stack stack("stack_cyclone", 170);
   stack.start("diagnostics", {"--metrics-port", "19191"});

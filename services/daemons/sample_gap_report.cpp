@@ -1,0 +1,30 @@
+#include "services/daemons/sample_gap_report.hpp"
+
+namespace ambid::daemons {
+
+SampleGapReport::SampleGapReport(bus::Bus& bus, DaemonRuntime& runtime, std::string plant_id)
+    : runtime_(runtime),
+      plant_id_(std::move(plant_id)),
+      alerts_(bus.writer<bus::Alert>()),
+      missed_(runtime.metrics.counter("ambid_samples_missed_total", "samples never received (a hole in the history)",
+                                      {})) {}
+
+void SampleGapReport::check(const bus::PlantSamples& batch) {
+  const std::optional<SampleGap> gap = gaps_.check(batch);
+  if (!gap) return;
+  bus::Alert a;
+  a.plant_id = plant_id_;
+  a.fault = "history_gap";
+  a.parameter = "samples";
+  a.level = bus::AlertLevel::warn;
+  a.time = gap->to;
+  a.value = gap->to - gap->from;  // s of plant time never received
+  a.message = gap->message().substr(0, bus::limits::text_length);
+  alerts_->write(a);
+  runtime_.metrics.published.Increment();
+  missed_.Increment(double(gap->samples));
+  runtime_.log(a.message);
+  runtime_.set_health(bus::AlertLevel::warn, a.message);
+}
+
+}  // namespace ambid::daemons

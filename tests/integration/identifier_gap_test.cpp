@@ -1,0 +1,41 @@
+// Issue 18: an identifier that was stalled (SIGSTOP, as a process the scheduler starved) misses
+// the sample batches published meanwhile (the samples topic keeps the last 64). It must say so:
+// a log line, ambid_samples_missed_total, Health WARN and a WARN alert history_gap naming the
+// plant time it missed, instead of silently identifying on after the hole.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "stack_support.hpp"
+
+namespace ambid::testing {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(IdentifierGap, AStalledIdentifierAlertsTheSamplesItMissed) {
+  Stack stack("stack_identifier_gap", 213);
+  stack.start("identifier", {"--metrics-port", "19213"});
+  stack.start("plant");
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  stack.pause("identifier");
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // ~30 s of plant time, 600 batches
+  stack.resume("identifier");
+  const CommandResult gap = stack.ambid("alerts --until WARN:samples --timeout 20");
+  ASSERT_EQ(gap.status, 0) << gap.output << stack.log("identifier");
+  EXPECT_THAT(gap.output, HasSubstr("bearing-1  samples  history_gap"));
+  EXPECT_THAT(gap.output, HasSubstr("a hole in the identified history"));
+  EXPECT_THAT(stack.log("identifier"), HasSubstr("a hole in the identified history"));
+  // Seconds of plant time are missed (the samples topic kept 64 batches, 3.2 s; 3 s of wall
+  // time are up to 30 s of plant time, less when this machine slows the plant down).
+  const double missed = metric(http_get(19213, "/metrics"), "ambid_samples_missed_total{role=\"identifier\"}");
+  EXPECT_GT(missed, 5.0 / 1e-4) << "samples of 1e-4 s";
+  const CommandResult status = stack.ambid("status --wait 2 --expect plant,identifier");
+  EXPECT_THAT(status.output, HasSubstr("identifier): WARN missed")) << status.output;
+  EXPECT_TRUE(stack.running("identifier"));
+}
+
+}  // namespace
+}  // namespace ambid::testing
