@@ -71,6 +71,7 @@ void RecursiveIdentification::add(const Experiment& stretch) {
         amb1dof_cold_start(amb1dof_nominal_structure(stretch, kWho), spread, stretch.sample_time);
     Amb1dofRecursivePemOptions o;
     o.forgetting = options_.forgetting;
+    if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
     estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time, o);
     plant_model_ = stretch.plant.model;
     sample_time_ = stretch.sample_time;

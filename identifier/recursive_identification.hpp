@@ -23,7 +23,8 @@ namespace ambid::ident {
 class Amb1dofRecursivePem;
 
 struct RecursiveIdentifyOptions {
-  // Memory 1 / (1 - forgetting) samples: 1 s at 10 kHz. 1: a growing memory (the batch limit).
+  // Memory 1 / (1 - forgetting) samples: 1 s at 10 kHz. 1: a growing memory (the batch limit),
+  // for a plant that does not change: then the offsets do not random-walk either.
   double forgetting = 0.9999;
 };
 

@@ -61,6 +61,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0) ||
       !(options.startup_forgetting > 0.0 && options.startup_forgetting <= 1.0))
     throw Error(kWho + ": forgetting factors must be in (0, 1]");
+  if (!(options.offset_random_walk >= 0.0)) throw Error(kWho + ": offset_random_walk must be >= 0");
   if (!(options.startup_samples >= 1.0) || options.relinearise_samples < 1 || !(options.prior_weight_samples >= 1.0))
     throw Error(kWho + ": startup_samples, relinearise_samples and prior_weight_samples must be >= 1");
   theta_.head<9>() = start.v;
@@ -129,6 +130,10 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
 
   // The 3 outputs as scalar measurements of the linearised error e_j(theta) ~ e_j - psi_j' dtheta.
   ud_.forget(lambda);
+  for (int k = 9; k < 12; ++k) {
+    Parameters along = Parameters::Unit(k);
+    ud_.add(options_.offset_random_walk, along);
+  }
   Parameters step = Parameters::Zero(), h, gain;
   for (int j = 0; j < 3; ++j) {
     h = w_.row(pem::kMeasured[std::size_t(j)]).transpose().cwiseProduct(scale_);

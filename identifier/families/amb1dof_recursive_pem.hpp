@@ -30,6 +30,9 @@
 // (= P for lambda = 1, P (1 - lambda) / (1 - lambda^2) ~ P / 2 at a long fixed memory).
 // Like the batch sigma it excludes model-structure error (the nonlinearity at large excitation).
 //
+// The offsets w also follow a random walk (offset_random_walk): P <- P + Q for w, as in a
+// Kalman filter of drifting parameters.
+//
 // Predictor stability (Ljung's projection): at every relinearisation the spectral radius of
 // Ad - K C is checked; an unstable predictor (or a non-finite error) puts theta back to the
 // last checked one and restarts the state and sensitivities from the measurement (counted in
@@ -51,6 +54,12 @@ struct Amb1dofRecursivePemOptions {
   int relinearise_samples = 1000;      // exact zero-order hold and derivatives this often
   double prior_relative_sigma = 0.3;   // of each start v (and 100 % of each K entry, w ~ its scale)
   double prior_weight_samples = 10.0;  // the start's Lambda counts as this many samples
+  // Variance per sample of a random walk of each offset w (in units of its scale, see below):
+  // the operating point moves with a fault (a hot coil settles at other bias currents), and w
+  // must follow it first; with forgetting alone the step is explained by v5, v8 (which multiply
+  // the same constant deviations) and the estimate wanders far off (R1 -70 % for seconds at
+  // lambda 0.9999) before w moves. 1e-3: w can move one scale unit in ~0.1 s.
+  double offset_random_walk = 1e-4;
   // Of the predictor Ad - K C at a relinearisation: at or above it the update is rejected.
   double max_predictor_radius = 0.9999;
 };

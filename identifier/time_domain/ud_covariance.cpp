@@ -25,6 +25,24 @@ void UdCovariance::forget(double lambda) {
   d_ = (d_ / lambda).cwiseMin(ceiling_);
 }
 
+void UdCovariance::add(double c, Eigen::Ref<Eigen::VectorXd> a) {
+  if (!(c >= 0.0) || a.size() != size()) throw Error("UD covariance: a random walk needs c >= 0 and a of size n");
+  // The columns from the last: a's part along column j goes into D_j, the rest on to the columns before.
+  for (Eigen::Index j = size() - 1; j >= 0 && c > 0.0; --j) {
+    const double s = a(j);
+    if (s == 0.0) continue;
+    const double d = d_(j) + c * s * s;
+    const double beta = c * s / d;
+    c *= d_(j) / d;
+    d_(j) = d;
+    double* column = u_.col(j).data();
+    for (Eigen::Index i = 0; i < j; ++i) {
+      a(i) -= s * column[i];
+      column[i] += beta * a(i);
+    }
+  }
+}
+
 double UdCovariance::update(const Eigen::Ref<const Eigen::VectorXd>& h, double r, Eigen::Ref<Eigen::VectorXd> gain) {
   const Eigen::Index n = size();
   // f = U' h, v = D f (U unit upper triangular, column-major: column j holds U(0..j-1, j)).

@@ -22,6 +22,10 @@ class UdCovariance {
   // P <- P / lambda, 0 < lambda <= 1.
   void forget(double lambda);
 
+  // P <- P + c a a', c >= 0 (a random walk of the parameters along a: Agee & Turner 1972, as
+  // Bierman 1977 sec. VI.3; O(n^2), and U, D stay a factorisation with D > 0).
+  void add(double c, Eigen::Ref<Eigen::VectorXd> a);
+
   // Measurement z = h' theta + noise of variance r > 0: P <- P - P h h' P / (h' P h + r); the
   // gain P_before h / (h' P h + r) is written to `gain` (size n). Returns h' P h + r.
   double update(const Eigen::Ref<const Eigen::VectorXd>& h, double r, Eigen::Ref<Eigen::VectorXd> gain);
