@@ -54,8 +54,8 @@ void BM_RpemUpdate(benchmark::State& state) {
   const ambid::ident::LoopSignals s = ambid::ident::loop_signals(e, {"x", "i1", "i2"}, {"u1", "u2"}, "bench");
   Eigen::Vector3d spread;
   for (Eigen::Index j = 0; j < 3; ++j) spread(j) = std::sqrt((s.y.col(j).array() - s.y.col(j).mean()).square().mean());
-  const ambid::ident::PemWarmStart start = ambid::ident::amb1dof_cold_start(
-      ambid::ident::amb1dof_nominal_structure(e, "bench"), spread, e.sample_time);
+  const ambid::ident::PemWarmStart start =
+      ambid::ident::amb1dof_cold_start(ambid::ident::amb1dof_nominal_structure(e, "bench"), spread, e.sample_time);
   ambid::ident::Amb1dofRecursivePem estimator(start, spread, e.sample_time);
   for (auto _ : state) {
     estimator.restart(s.y.row(0).transpose());  // the record again: not a jump of the state

@@ -79,8 +79,7 @@ void RecursiveIdentification::add(const Experiment& stretch) {
   } else if (std::abs(stretch.t(0) - next_time_) > 0.5 * sample_time_) {
     estimator_->restart(s.y.row(0).transpose());  // a gap: the predictor starts again at rest
   }
-  for (Eigen::Index k = 0; k < s.y.rows(); ++k)
-    estimator_->update(s.y.row(k).transpose(), s.u.row(k).transpose());
+  for (Eigen::Index k = 0; k < s.y.rows(); ++k) estimator_->update(s.y.row(k).transpose(), s.u.row(k).transpose());
   next_time_ = stretch.t(stretch.samples() - 1) + sample_time_;
 }
 

@@ -9,8 +9,7 @@ namespace ambid::ident {
 UdCovariance::UdCovariance(const Eigen::VectorXd& initial, double ceiling) {
   if (initial.size() == 0 || !initial.allFinite() || !(initial.minCoeff() > 0.0))
     throw Error("UD covariance: the initial variances must be finite and > 0");
-  if (!(ceiling >= 1.0) || !std::isfinite(ceiling))
-    throw Error("UD covariance: the ceiling must be finite and >= 1");
+  if (!(ceiling >= 1.0) || !std::isfinite(ceiling)) throw Error("UD covariance: the ceiling must be finite and >= 1");
   const Eigen::Index n = initial.size();
   u_ = Eigen::MatrixXd::Identity(n, n);
   d_ = initial;

@@ -23,10 +23,9 @@ struct IdentifierConfig {
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(
-      j, "identifier config",
-      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent", "failing_fraction",
-       "publish_rate", "forgetting"});
+  reject_unknown_keys(j, "identifier config",
+                      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent",
+                       "failing_fraction", "publish_rate", "forgetting"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -46,8 +45,8 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
     if (!(c.continuous->forgetting > 0 && c.continuous->forgetting <= 1))
       throw Error("identifier config: forgetting must be in (0, 1], got " + std::to_string(c.continuous->forgetting));
   } else if (j.contains("publish_rate") || j.contains("forgetting")) {
-    throw Error("identifier config: publish_rate and forgetting are for method rpem only (method " +
-                c.identify.method + " publishes once per window)");
+    throw Error("identifier config: publish_rate and forgetting are for method rpem only (method " + c.identify.method +
+                " publishes once per window)");
   }
   // Signed, so that a negative value is named instead of wrapping around.
   const auto count = [&](const char* key, std::size_t fallback) {

@@ -29,8 +29,8 @@ TEST(RecursivePemSlow, CovarianceFactorStaysPositiveDefiniteOverAMillionSamples)
     const auto head = s.y.col(j).segment(first, 2500).array();
     spread(j) = std::sqrt((head - head.mean()).square().mean());
   }
-  Amb1dofRecursivePem estimator(amb1dof_cold_start(amb1dof_nominal_structure(e, "test"), spread, e.sample_time),
-                                spread, e.sample_time);
+  Amb1dofRecursivePem estimator(amb1dof_cold_start(amb1dof_nominal_structure(e, "test"), spread, e.sample_time), spread,
+                                e.sample_time);
   const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(
       amb1dof_nominal(e, "test").L1, amb1dof_nominal(e, "test").L2, amb1dof_nominal(e, "test").m);
   double worst_condition = 0.0, worst_error = 0.0;
@@ -50,8 +50,8 @@ TEST(RecursivePemSlow, CovarianceFactorStaysPositiveDefiniteOverAMillionSamples)
     for (const std::string name : {"R1", "R2", "kw1", "kw2"}) {
       const auto& names = amb1dof_physical_names();
       const std::size_t i = std::size_t(std::find(names.begin(), names.end(), name) - names.begin());
-      worst_error = std::max(worst_error, std::abs(v(Eigen::Index(i)) * scale(Eigen::Index(i)) /
-                                                       record.true_parameters.get(name) - 1.0));
+      worst_error = std::max(
+          worst_error, std::abs(v(Eigen::Index(i)) * scale(Eigen::Index(i)) / record.true_parameters.get(name) - 1.0));
     }
   }
   ::testing::Test::RecordProperty("worst_condition", testing::sci(worst_condition));

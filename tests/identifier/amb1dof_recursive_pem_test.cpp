@@ -21,8 +21,8 @@
 
 #include "amb1dof_pem_checks.hpp"
 #include "core/error.hpp"
-#include "plant_sim/amb1dof_parameters.hpp"
 #include "identifier/time_domain/ud_covariance.hpp"
+#include "plant_sim/amb1dof_parameters.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -64,7 +64,8 @@ TEST_P(Converges, EveryVToTheTruthWithinTheBatchPrecision) {
     EXPECT_LT(sigma, 2.0 * batch_sigma) << name;
     EXPECT_GT(sigma, batch_sigma / 2.0) << name;
   }
-  EXPECT_EQ(m.extra.json()["rpem"]["samples"].get<std::uint64_t>(), std::uint64_t(record.experiment.samples() - record.settled));
+  EXPECT_EQ(m.extra.json()["rpem"]["samples"].get<std::uint64_t>(),
+            std::uint64_t(record.experiment.samples() - record.settled));
 }
 
 INSTANTIATE_TEST_SUITE_P(Controllers, Converges, ::testing::ValuesIn(testing::amb1dof_record_controllers()));
