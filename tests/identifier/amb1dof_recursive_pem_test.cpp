@@ -39,13 +39,13 @@ double relative_error(const Model& m, const std::string& name, const std::map<st
   return m.parameters.at(name) / truth.at(name) - 1.0;
 }
 
-class Converges : public ::testing::TestWithParam<std::string> {};
+class RecursivePemConverges : public ::testing::TestWithParam<std::string> {};
 
 // 10 s at 0.1 um / 1 mA with a growing memory (forgetting 1), from the nominal model: every
 // v1..v9 within 4 batch sigmas of the truth plus the batch method's own error (both estimate
 // the same criterion's minimum; the batch sigma is what the data allow), its reported sigma
 // within a factor 2 of the batch one, and no update rejected at the end.
-TEST_P(Converges, EveryVToTheTruthWithinTheBatchPrecision) {
+TEST_P(RecursivePemConverges, EveryVToTheTruthWithinTheBatchPrecision) {
   Amb1dofRecordOptions o = testing::noisy_record(GetParam(), 10.0, 11);
   o.amplitude = testing::noisy_amplitude(GetParam());
   const Amb1dofRecord record = testing::simulate_amb1dof_record(o);
@@ -68,7 +68,7 @@ TEST_P(Converges, EveryVToTheTruthWithinTheBatchPrecision) {
             std::uint64_t(record.experiment.samples() - record.settled));
 }
 
-INSTANTIATE_TEST_SUITE_P(Controllers, Converges, ::testing::ValuesIn(testing::amb1dof_record_controllers()));
+INSTANTIATE_TEST_SUITE_P(Controllers, RecursivePemConverges, ::testing::ValuesIn(testing::amb1dof_record_controllers()));
 
 // Rows [begin, end) of a record as a stretch, its time shifted by `shift` (rpem needs no
 // controller state: the direct method uses the recorded plant input).
