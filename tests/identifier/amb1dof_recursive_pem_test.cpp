@@ -68,7 +68,8 @@ TEST_P(RecursivePemConverges, EveryVToTheTruthWithinTheBatchPrecision) {
             std::uint64_t(record.experiment.samples() - record.settled));
 }
 
-INSTANTIATE_TEST_SUITE_P(Controllers, RecursivePemConverges, ::testing::ValuesIn(testing::amb1dof_record_controllers()));
+INSTANTIATE_TEST_SUITE_P(Controllers, RecursivePemConverges,
+                         ::testing::ValuesIn(testing::amb1dof_record_controllers()));
 
 // Rows [begin, end) of a record as a stretch, its time shifted by `shift` (rpem needs no
 // controller state: the direct method uses the recorded plant input).
