@@ -43,6 +43,10 @@ const std::vector<IdentificationMethod>& method_registry() {
        "prediction error (exact sensitivities, QR Levenberg-Marquardt) from the best of closed-loop, deadbeat-iv, "
        "deadbeat, nominal; noise-consistent",
        detail::fit_pem},
+      {"rpem", false, false, true,
+       "recursive prediction error (seed 001: sample by sample, UD covariance, forgetting 1 s) from the nominal "
+       "model; the estimate at the record's end",
+       detail::fit_rpem},
       {"greybox", false, false, true,
        "physical parameters on the family's nonlinear model from x, i, u (no controller or r needed)",
        detail::fit_greybox},

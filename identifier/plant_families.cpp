@@ -15,7 +15,7 @@ const std::vector<IdentificationFamily>& identification_families() {
        4,
        add_amb1dof_structure,
        nullptr,
-       {"deadbeat", "deadbeat-iv", "pem"}},
+       {"deadbeat", "deadbeat-iv", "pem", "rpem"}},
       {"maglev1coil_voltage", {"x", "i"}, {"u"}, 3, nullptr, fit_maglev_greybox_model, {"greybox"}},
   };
   return families;

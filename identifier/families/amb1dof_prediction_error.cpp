@@ -279,6 +279,17 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
 
 }  // namespace
 
+PemWarmStart amb1dof_cold_start(const Vector9& v, const Eigen::Vector3d& spread, double sample_time) {
+  check_start(v);
+  if (!spread.allFinite() || !(spread.minCoeff() > 0.0))
+    throw Error(kWho + ": the spread of every output must be finite and > 0");
+  const Parameters theta = cold_start(v, Eigen::MatrixXd::Zero(1, 3), sample_time, spread);
+  PemWarmStart start;
+  start.v = v;
+  start.predictor_gain = pem::gain_of(theta);
+  return start;
+}
+
 Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u,
                                                        const Eigen::MatrixXd& r, double sample_time,
                                                        const std::vector<Vector9>& v_starts,

@@ -95,4 +95,11 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixX
                                                             const PemWarmStart& start,
                                                             const Amb1dofPredictionErrorOptions& options = {});
 
+// The cold start of a model v (every entry non-zero): no offset, and the predictor gain of the
+// steady-state Kalman filter of v's model without process noise and with each output's noise
+// a tenth of its `spread` (rms about the mean, > 0): a stable predictor although the plant is
+// unstable. The batch method starts from it, the recursive one (amb1dof_recursive_pem.hpp) too.
+PemWarmStart amb1dof_cold_start(const Eigen::Matrix<double, 9, 1>& v, const Eigen::Vector3d& spread,
+                                double sample_time);
+
 }  // namespace ambid::ident

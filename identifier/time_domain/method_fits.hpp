@@ -14,6 +14,8 @@ void fit_okid(const Experiment& fit, const IdentifyOptions& options, Model& mode
 void fit_closed_loop(const Experiment& fit, const IdentifyOptions& options, Model& model);
 void fit_projection(const Experiment& fit, const IdentifyOptions& options, Model& model);
 void fit_pem(const Experiment& fit, const IdentifyOptions& options, Model& model);
+// recursive_identification.cpp: the recursive estimator over the whole record.
+void fit_rpem(const Experiment& fit, const IdentifyOptions& options, Model& model);
 void fit_greybox(const Experiment& fit, const IdentifyOptions& options, Model& model);
 
 }  // namespace ambid::ident::detail

@@ -1,10 +1,12 @@
 #include "services/daemons/identifier_daemon.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "services/daemons/continuous_estimator.hpp"
 #include "services/daemons/daemon_runtime.hpp"
 #include "services/daemons/identify_window.hpp"
 #include "services/daemons/sample_gap_report.hpp"
@@ -18,12 +20,13 @@ struct IdentifierConfig {
   WindowSettings windows{.window = 0.25, .settle = 0.25};
   ident::IdentifyOptions identify = window_identify_options(kDefaultWindowMethod);
   WindowFailureRule failures;
+  std::optional<ident::RecursiveIdentifyOptions> continuous;  // method rpem: one estimator, windows = publish periods
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(
-      j, "identifier config",
-      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent", "failing_fraction"});
+  reject_unknown_keys(j, "identifier config",
+                      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent",
+                       "failing_fraction", "publish_rate", "forgetting"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -33,6 +36,19 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
                                        Eigen::Index(config_value(j, "transient_samples", 0)));
   if (!(c.windows.window > 0))
     throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.windows.window));
+  if (c.identify.method == "rpem") {
+    const double rate = config_value(j, "publish_rate", 1.0 / c.windows.window);
+    if (!(rate > 0) || !std::isfinite(rate))
+      throw Error("identifier config: publish_rate must be > 0 Hz, got " + std::to_string(rate));
+    c.windows.window = 1.0 / rate;
+    c.continuous = ident::RecursiveIdentifyOptions{};
+    c.continuous->forgetting = config_value(j, "forgetting", c.continuous->forgetting);
+    if (!(c.continuous->forgetting > 0 && c.continuous->forgetting <= 1))
+      throw Error("identifier config: forgetting must be in (0, 1], got " + std::to_string(c.continuous->forgetting));
+  } else if (j.contains("publish_rate") || j.contains("forgetting")) {
+    throw Error("identifier config: publish_rate and forgetting are for method rpem only (method " + c.identify.method +
+                " publishes once per window)");
+  }
   // Signed, so that a negative value is named instead of wrapping around.
   const auto count = [&](const char* key, std::size_t fallback) {
     const int n = config_value(j, key, int(fallback));
@@ -70,8 +86,10 @@ int run_identifier_daemon(const DaemonOptions& options) {
   WindowSteps steps(runtime, dropped_help);
   WindowFailures failures(config.failures, runtime.metrics);
   SampleGapReport gaps(*bus, runtime, options.plant_id);  // holes in the samples
-  runtime.ready("windows of " + std::to_string(config.windows.window) + " s, method " + config.identify.method +
-                "; plant description from the bus");
+  std::optional<ContinuousEstimator> continuous;
+  if (config.continuous) continuous.emplace(*config.continuous);
+  runtime.ready((continuous ? "continuous, published every " : "windows of ") + std::to_string(config.windows.window) +
+                " s, method " + config.identify.method + "; plant description from the bus");
   std::uint64_t seq = 0;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
@@ -88,7 +106,8 @@ int run_identifier_daemon(const DaemonOptions& options) {
         try {
           const auto start = std::chrono::steady_clock::now();
           // Only published models are numbered: a gap in seq is a model a consumer missed.
-          bus::IdentifiedModel model = identify_window(w, options.plant_id, seq, config.identify);
+          bus::IdentifiedModel model = continuous ? continuous->identify(w, options.plant_id, seq)
+                                                  : identify_window(w, options.plant_id, seq, config.identify);
           ++seq;
           identification_seconds.Observe(seconds_since(start));
           models->write(model);

@@ -1,0 +1,171 @@
+#include "identifier/families/amb1dof_recursive_pem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "core/error.hpp"
+#include "core/linalg.hpp"
+
+namespace ambid::ident {
+namespace {
+
+const std::string kWho = "recursive prediction-error identification";
+constexpr int kGain = 12;  // first K column of theta (K(i, j) at kGain + 3 i + j)
+using Parameters = Amb1dofRecursivePem::Parameters;
+
+// theta = [v, w, K] -> the batch predictor's 28 parameters (x0 = 0: the hold does not use it).
+pem::Parameters batch_parameters(const Parameters& theta) {
+  pem::Parameters out = pem::Parameters::Zero();
+  out.head<pem::kModel>() = theta.head<pem::kModel>();
+  out.tail<12>() = theta.tail<12>();
+  return out;
+}
+
+// The batch method's scales (amb1dof_prediction_error.cpp): v by |v|, w by the size of the
+// rows' terms, K by |K| or a thousandth of the state-to-output ratio.
+Parameters parameter_scale(const Parameters& theta, const Eigen::Vector3d& spread) {
+  const Eigen::Vector4d xs(spread(0), spread(0) * std::sqrt(std::abs(theta(0))), spread(1), spread(2));
+  Parameters s;
+  s.head<9>() = theta.head<9>().cwiseAbs();
+  s.segment<3>(9) << std::abs(theta(0)) * spread(0), std::abs(theta(4)) * spread(1), std::abs(theta(6)) * spread(2);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j)
+      s(kGain + 3 * i + j) = std::max(std::abs(theta(kGain + 3 * i + j)), 1e-3 * xs(i) / spread(j));
+  return s;
+}
+
+Eigen::Vector4d at_rest(const Eigen::Vector3d& y) { return {y(0), 0.0, y(1), y(2)}; }
+
+}  // namespace
+
+Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen::Vector3d& spread, double sample_time,
+                                         const Amb1dofRecursivePemOptions& options)
+    : options_(options),
+      sample_time_(sample_time),
+      ud_([&] {
+        if (!start.v.allFinite() || (start.v.array() == 0.0).any() || !start.offset.allFinite() ||
+            !start.predictor_gain.allFinite())
+          throw Error(kWho + ": the start's v1..v9 must be finite and non-zero, its w and K finite");
+        if (!spread.allFinite() || !(spread.minCoeff() > 0.0))
+          throw Error(kWho + ": the spread of every output must be finite and > 0");
+        if (!(options.prior_relative_sigma > 0.0)) throw Error(kWho + ": prior_relative_sigma must be > 0");
+        Eigen::VectorXd prior = Eigen::VectorXd::Ones(kParameters);
+        prior.head<9>().setConstant(options.prior_relative_sigma * options.prior_relative_sigma);
+        return UdCovariance(prior);
+      }()),
+      lambda_(spread.cwiseAbs2()),
+      s1_(options.prior_weight_samples),
+      forgetting_(options.startup_forgetting) {
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time)) throw Error(kWho + ": sample time must be finite and > 0");
+  if (!(options.forgetting > 0.0 && options.forgetting <= 1.0) ||
+      !(options.startup_forgetting > 0.0 && options.startup_forgetting <= 1.0))
+    throw Error(kWho + ": forgetting factors must be in (0, 1]");
+  if (!(options.offset_random_walk >= 0.0)) throw Error(kWho + ": offset_random_walk must be >= 0");
+  if (!(options.startup_samples >= 1.0) || options.relinearise_samples < 1 || !(options.prior_weight_samples >= 1.0))
+    throw Error(kWho + ": startup_samples, relinearise_samples and prior_weight_samples must be >= 1");
+  theta_.head<9>() = start.v;
+  theta_.segment<3>(9) = start.offset;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) theta_(kGain + 3 * i + j) = start.predictor_gain(i, j);
+  scale_ = parameter_scale(theta_, spread);
+  checked_ = theta_;
+  relinearise();
+  if (projections_ > 0) throw InsufficientData(kWho + ": the predictor of the start is unstable");
+}
+
+Eigen::Matrix<double, 4, 3> Amb1dofRecursivePem::predictor_gain() const {
+  return pem::gain_of(batch_parameters(theta_));
+}
+
+Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
+  const Eigen::MatrixXd P = ud_.covariance();
+  const Eigen::Matrix<double, 9, 1> s = scale_.head<9>();
+  // s1_ and s2_ include the start's weight as samples; the ratio is that of the data's weights.
+  return (s2_ > 0.0 ? s2_ / s1_ : 1.0) * (s.asDiagonal() * P.topLeftCorner<9, 9>() * s.asDiagonal());
+}
+
+void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
+  x_ = at_rest(y);
+  w_.setZero();
+  started_ = true;
+}
+
+void Amb1dofRecursivePem::relinearise() {
+  since_relinearise_ = 0;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    reference_ = pem::zero_order_hold(batch_parameters(theta_), sample_time_, true);
+    gain_ = pem::gain_of(batch_parameters(theta_));
+    Eigen::Matrix4d F = reference_.Ad;
+    for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
+    const bool stable = F.allFinite() && linalg::spectral_radius(F) < options_.max_predictor_radius;
+    if (stable || attempt == 1) break;
+    // Ljung's projection: back to the last stable predictor, its state from the measurement.
+    ++projections_;
+    theta_ = checked_;
+    restart({x_(0), x_(2), x_(3)});
+  }
+  checked_ = theta_;
+  reference_model_ = theta_.head<pem::kModel>();
+  hold_ << reference_.Ad, reference_.Bd;
+}
+
+void Amb1dofRecursivePem::set_model() {
+  hold_ << reference_.Ad, reference_.Bd;
+  for (int k = 0; k < pem::kModel; ++k)
+    hold_ += (theta_(k) - reference_model_(k)) * reference_.derivative.block<4, 7>(4 * k, 0);
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) gain_(i, j) = theta_(kGain + 3 * i + j);
+}
+
+void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d& u) {
+  if (!started_) restart(y);
+  const Eigen::Vector3d e(y(0) - x_(0), y(1) - x_(2), y(2) - x_(3));
+  const double lambda = forgetting_;
+  const double approach = 1.0 / options_.startup_samples;
+  forgetting_ += approach * (options_.forgetting - forgetting_);
+  s1_ = lambda * s1_ + 1.0;
+  s2_ = lambda * lambda * s2_ + 1.0;
+  lambda_ += (e.cwiseAbs2() - lambda_) / s1_;
+
+  // The 3 outputs as scalar measurements of the linearised error e_j(theta) ~ e_j - psi_j' dtheta.
+  ud_.forget(lambda);
+  for (int k = 9; k < 12; ++k) {
+    Parameters along = Parameters::Unit(k);
+    ud_.add(options_.offset_random_walk, along);
+  }
+  Parameters step = Parameters::Zero(), h, gain;
+  for (int j = 0; j < 3; ++j) {
+    h = w_.row(pem::kMeasured[std::size_t(j)]).transpose().cwiseProduct(scale_);
+    const double innovation = e(j) - h.dot(step);
+    ud_.update(h, lambda_(j), gain);
+    step += gain * innovation;
+  }
+  theta_ += scale_.cwiseProduct(step);
+  set_model();
+
+  // Sensitivities and state of the next sample with the updated theta.
+  Eigen::Matrix<double, 7, 1> z;
+  z << x_, u, 1.0;
+  Eigen::Matrix4d F = hold_.leftCols<4>();
+  for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
+  Eigen::Matrix<double, 4, kParameters> next;
+  next.noalias() = F * w_;
+  Eigen::Matrix<double, 4 * pem::kModel, 1> model_terms;
+  model_terms.noalias() = reference_.derivative * z;
+  next.leftCols<pem::kModel>() += Eigen::Map<const Eigen::Matrix<double, 4, pem::kModel>>(model_terms.data());
+  for (int i = 0; i < 4; ++i) next.block<1, 3>(i, kGain + 3 * i) += e.transpose();
+  w_ = next;
+  x_ = hold_ * z + gain_ * e;
+  ++samples_;
+  if (!x_.allFinite() || !w_.allFinite() || !theta_.allFinite()) {
+    ++projections_;
+    theta_ = checked_;
+    relinearise();
+    restart(y);
+    return;
+  }
+  if (++since_relinearise_ >= options_.relinearise_samples) relinearise();
+}
+
+}  // namespace ambid::ident

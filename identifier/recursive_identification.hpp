@@ -1,0 +1,64 @@
+#pragma once
+// Identification that goes on sample by sample: the recursive prediction-error method of the
+// amb1dof_voltage structure (`rpem`, identifier/families/amb1dof_recursive_pem.hpp) fed with
+// consecutive stretches of one plant's record, its estimates readable at any time. `ambid
+// identify --method rpem` runs it over the whole record (detail::fit_rpem); the identifier
+// daemon feeds it every batch and publishes at a configured rate.
+//
+// Start: the experiment's nominal model (the sidecar's parameters, the model the controller was
+// designed on) with its Kalman predictor gain, the output scales from the first stretch.
+// A stretch that does not follow the last one (a gap in time) restarts the predictor's state
+// and sensitivities; one of another plant model or sample time restarts everything.
+#include <cstdint>
+#include <memory>
+
+#include <string>
+
+#include "core/experiment.hpp"
+#include "identifier/amb1dof_structure.hpp"
+#include "identifier/identify_window.hpp"
+
+namespace ambid::ident {
+
+class Amb1dofRecursivePem;
+
+struct RecursiveIdentifyOptions {
+  // Memory 1 / (1 - forgetting) samples: 1 s at 10 kHz. 1: a growing memory (the batch limit),
+  // for a plant that does not change: then the offsets do not random-walk either.
+  double forgetting = 0.9999;
+};
+
+class RecursiveIdentification {
+ public:
+  explicit RecursiveIdentification(RecursiveIdentifyOptions options = {});
+  ~RecursiveIdentification();
+  RecursiveIdentification(RecursiveIdentification&&) noexcept;
+  RecursiveIdentification& operator=(RecursiveIdentification&&) noexcept;
+
+  // The samples of `stretch` (an amb1dof_voltage experiment with its nominal parameters; the
+  // outputs x, i1, i2 and inputs u1, u2). Throws Error naming what the experiment lacks (another
+  // plant family, a missing signal or parameter), InsufficientData when the first stretch's
+  // outputs do not vary (no scale to start from); the estimator is then unchanged.
+  void add(const Experiment& stretch);
+
+  bool started() const { return estimator_ != nullptr; }
+  std::uint64_t samples() const;      // since the start
+  std::uint64_t projections() const;  // updates rejected for an unstable predictor
+
+  // The current model: v1..v9, the physical quantities (with the nominal L1, L2, m) and their
+  // sigmas, the continuous model and its zero-order hold; model.extra["rpem"] the samples,
+  // forgetting, projections, offset, predictor gain and prediction-error rms. Throws
+  // InsufficientData before the first sample.
+  WindowIdentification estimate() const;
+
+ private:
+  RecursiveIdentifyOptions options_;
+  std::unique_ptr<Amb1dofRecursivePem> estimator_;
+  // Of the started record: plant model, sample time, the nominal L1, L2, m, when the next sample is due.
+  std::string plant_model_;
+  double sample_time_ = 0.0;
+  Amb1dofNominal nominal_;
+  double next_time_ = 0.0;
+};
+
+}  // namespace ambid::ident
