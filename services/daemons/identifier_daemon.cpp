@@ -110,14 +110,14 @@ int run_identifier_daemon(const DaemonOptions& options) {
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantDescription& d : descriptions->take())
-      if (served.serves(d.plant_id)) steps.describe(plant(d.plant_id).window, d);
+      if (served.serves(d.plant_id)) steps.describe(plant(d.plant_id).window, d, served.single() ? "" : d.plant_id);
     for (const bus::PlantSamples& batch : samples->take()) {
       if (!served.serves(batch.plant_id)) continue;
       Plant& p = plant(batch.plant_id);
       const std::string plant_node = batch.plant_id + "/identifier";
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
-      steps.report(p.window.add(batch));
+      steps.report(p.window.add(batch), served.single() ? "" : batch.plant_id);
       while (p.window.full()) {
         const Experiment w = p.window.take();
         try {
