@@ -36,7 +36,7 @@ TEST(FleetStack, EightBearingsTwoIdentifiersOneDiagnosticsFaultAlertsOnlyItsBear
       << R"(", "learning_windows": 40, "persist_windows": 20, "stale_timeout": 2.0, "silence": 6.0})";
   stack.start("diagnostics");
   start_identifier(stack, "identifier-a", plant_list(1, 4), domain, "cyclone");
-  start_identifier(stack, "identifier-b", plant_list(5, 8), domain, "fastdds");
+  start_identifier(stack, "identifier-b", plant_list(5, 8), domain, "cyclone");
   for (int k = 1; k <= kBearings; ++k) start_plant(stack, k, domain);
 
   // Every bearing identified: its baseline learned (at most 90 s), the mean of its stored R1
