@@ -32,6 +32,21 @@ StateSpaceController amb1dof_pid(double sample_time) {
   return pid_controller({position, coil1, coil2}, sample_time, {"u1", "u2"});
 }
 
+// The other classical design (tests and stacks that must not all see one controller): the
+// same proportional current loops, and on the position a lead-lag with integral action,
+// C(s) = 2.5e6 (1.2 ms s + 1) / ((0.15 ms s + 1) (0.03 ms s + 1)) + 5e7 / s: net stiffness
+// about 1e6 N/m, phase lead centred near 2300 rad/s (zero at 833, pole at 6667 rad/s), a
+// roll-off at 33 krad/s, the integral (below 20 rad/s) bringing x to 0 with both coils at
+// the same current. Tustin, not the PID's Euler forms. A continuous approximation of the loop
+// (coil pole, no back-EMF) puts its slowest oscillating mode near 1230 rad/s with damping
+// 0.35; coil and amplifier faults of 20 % keep it stable (tests/plant_sim/scenario_test.cpp).
+StateSpaceController amb1dof_lead_lag(double sample_time) {
+  LeadLagLoop position{"x", {{"u1", 1.0}, {"u2", -1.0}}, 2.5e6, {{1.2e-3, 1.5e-4}, {0.0, 3e-5}}, 5e7};
+  LeadLagLoop coil1{"i1", {{"u1", 1.0}}, 1000.0, {}, 0.0};
+  LeadLagLoop coil2{"i2", {{"u2", 1.0}}, 1000.0, {}, 0.0};
+  return lead_lag_controller({position, coil1, coil2}, sample_time, {"u1", "u2"});
+}
+
 Excitation make_excitation(const ScenarioOptions& o, Eigen::Index samples, int channels) {
   if (o.excitation == "prbs") {
     PrbsOptions p;
@@ -128,8 +143,10 @@ Scenario build_amb1dof_scenario(const ScenarioOptions& o) {
                                               amb1dof_observer_controller_options());
   } else if (o.controller == "pid") {
     h.controller = amb1dof_pid(o.sample_time);
+  } else if (o.controller == "leadlag") {
+    h.controller = amb1dof_lead_lag(o.sample_time);
   } else {
-    throw Error("simulation: unknown controller '" + o.controller + "' (known: lqr, pid)");
+    throw Error("simulation: unknown controller '" + o.controller + "' (known: lqr, pid, leadlag)");
   }
 
   const Eigen::Index samples = Eigen::Index(std::llround(o.duration / o.sample_time));

@@ -96,7 +96,19 @@ LoopSystem lead_lag_loop(const LeadLagLoop& loop, double T, const std::string& w
   const Eigen::Index n = A.rows();
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n, n);
   const Eigen::MatrixXd M = linalg::inverse(I - A * (T / 2));
-  return LoopSystem{M * (I + A * (T / 2)), M * B * T, C * M, D + C * M * B * (T / 2)};
+  LoopSystem s{M * (I + A * (T / 2)), M * B * T, C * M, D + C * M * B * (T / 2)};
+  require_finite(loop.ki, where, "ki");
+  if (loop.ki == 0.0) return s;
+  // Integral in parallel: I[k+1] = I[k] + T e[k]; term ki I[k].
+  LoopSystem with{Eigen::MatrixXd::Zero(n + 1, n + 1), Eigen::MatrixXd::Zero(n + 1, 1), Eigen::MatrixXd::Zero(1, n + 1),
+                  s.D};
+  with.A.topLeftCorner(n, n) = s.A;
+  with.A(n, n) = 1.0;
+  with.B.topRows(n) = s.B;
+  with.B(n, 0) = T;
+  with.C.leftCols(n) = s.C;
+  with.C(0, n) = loop.ki;
+  return with;
 }
 
 template <class Loop, class Discretise>

@@ -31,7 +31,9 @@ struct PidLoop {
   double derivative_time_constant = 0.0;  // tau, > 0 when kd != 0
 };
 
-// C(s) = gain * prod_i (lead_i s + 1) / (lag_i s + 1), discretised by Tustin (bilinear).
+// C(s) = gain * prod_i (lead_i s + 1) / (lag_i s + 1) + ki / s: the cascade discretised by
+// Tustin (bilinear), the integral as the PID's (forward Euler, term ki I[k]; no state when
+// ki = 0).
 struct LeadLagSection {
   double lead_time_constant = 0.0;  // >= 0
   double lag_time_constant = 0.0;   // > 0
@@ -41,6 +43,7 @@ struct LeadLagLoop {
   std::vector<LoopDrive> drives;
   double gain = 0.0;
   std::vector<LeadLagSection> sections;
+  double ki = 0.0;
 };
 
 // Controller inputs: the measured signals in order of first appearance; outputs:

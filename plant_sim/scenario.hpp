@@ -21,7 +21,7 @@ struct ScenarioOptions {
   std::string plant = "amb1dof_voltage";
   std::map<std::string, double> true_parameters;  // overrides of the truth; the sidecar keeps nominal
   std::vector<Effect> effects;                    // effects of the truth (effects.hpp); the sidecar stays nominal
-  std::string controller = "lqr";                 // lqr (observer + integral action) | pid
+  std::string controller = "lqr";                 // lqr (observer + integral action) | pid | leadlag
   std::string excitation = "prbs";                // prbs | multisine | chirp | stepped_sine | none
   double amplitude = 0.05;                        // excitation level at each plant input (V); rms for multisine
   double f_min = 1.0, f_max = 1000.0;             // band of multisine, chirp and stepped sine (Hz)

@@ -118,7 +118,9 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--duration", o.duration, "record length (s)")->capture_default_str();
   sim->add_option("--sample-time", o.sample_time, "sample time (s)")->capture_default_str();
   sim->add_option("--seed", o.seed, "seed of excitation and noise")->capture_default_str();
-  sim->add_option("--controller", o.controller, "controller design: lqr (observer, integral action) | pid")
+  sim->add_option(
+         "--controller", o.controller,
+         "controller design: lqr (observer, integral action) | pid | leadlag (both decentralised with current loops)")
       ->capture_default_str();
   sim->add_option("--excitation", o.excitation,
                   "prbs | multisine | chirp | stepped_sine | none; maglev1coil_voltage: uniform | none")

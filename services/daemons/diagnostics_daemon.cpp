@@ -1,5 +1,8 @@
 #include "services/daemons/diagnostics_daemon.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -18,6 +21,7 @@
 #include "services/daemons/description_change.hpp"
 #include "services/daemons/model_gaps.hpp"
 #include "services/daemons/plant_time.hpp"
+#include "services/daemons/served_plants.hpp"
 #include "services/daemons/window_failures.hpp"
 
 namespace ambid::daemons {
@@ -35,8 +39,8 @@ constexpr double kDay = 86400.0;
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "diagnostics config",
-                      {"store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout", "silence",
-                       "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
+                      {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout",
+                       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
@@ -60,18 +64,22 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
 }  // namespace
 
 int run_diagnostics_daemon(const DaemonOptions& options) {
-  const DiagnosticsConfig config = diagnostics_config(load_config(options.config));
+  const nlohmann::json json = load_config(options.config);
+  const DiagnosticsConfig config = diagnostics_config(json);
+  const ServedPlants served(json, options.plant_id, "diagnostics config");
   diag::TrendStore store(config.store);
-  auto engine = std::make_unique<diag::DiagnosticsEngine>(store, config.engine);
 
   auto bus = options.connect();
-  DaemonRuntime runtime(*bus, "diagnostics", options.plant_id + "/diagnostics", options.metrics_port);
+  // One plant: its node as before; several: the process's own node, plus one per plant.
+  DaemonRuntime runtime(*bus, "diagnostics",
+                        served.single() ? options.plant_id + "/diagnostics" : "diagnostics@" + std::to_string(getpid()),
+                        options.metrics_port);
   auto models = bus->reader<bus::IdentifiedModel>();
   auto sources = bus->reader<bus::PlantSourceState>();
   auto descriptions = bus->reader<bus::PlantDescription>();
   auto health = bus->reader<bus::Health>();
   auto alerts = bus->writer<bus::Alert>();
-  runtime.ready("trend store " + config.store);
+  runtime.ready("trend store " + config.store + ", " + served.describe());
 
   std::map<diag::Level, prometheus::Counter*> alerts_by_level;
   for (diag::Level level : {diag::Level::ok, diag::Level::warn, diag::Level::error, diag::Level::stale})
@@ -82,14 +90,40 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       alerts->write(convert::to_message(a));
       runtime.metrics.published.Increment();
       alerts_by_level.at(a.level)->Increment();
-      runtime.log(std::string(diag::to_string(a.level)) + " " + a.parameter + ": " + a.message);
+      runtime.log(std::string(diag::to_string(a.level)) + " " + a.plant_id + " " + a.parameter + ": " + a.message);
     }
   };
-  std::optional<bus::PlantDescription> loop;  // the description in force
+  prometheus::Counter& missed_models = runtime.metrics.counter(
+      "ambid_models_missed_total", "identified models never received (a hole in the history)", {});
+  // Everything the diagnostics keep is per plant (engine with its baselines and trend state,
+  // loop, clock); the trend store is shared, keyed by plant id.
+  struct Plant {
+    std::unique_ptr<diag::DiagnosticsEngine> engine;
+    std::optional<bus::PlantDescription> loop;  // the description in force
+    diag::Source source = diag::Source::sim;
+    PlantTime plant_time;
+    std::optional<double> last_retention;  // plant time of the last retention pass
+    ModelGaps gaps;
+    std::chrono::steady_clock::time_point last_model = std::chrono::steady_clock::now();
+    bool stale = false;
+    bool identifier_failing = false;  // its Health says its windows keep failing (window_failures.hpp)
+  };
+  std::map<std::string, Plant> plants;
+  auto plant = [&](const std::string& id) -> Plant& {
+    auto it = plants.find(id);
+    if (it == plants.end()) {
+      it = plants.emplace(id, Plant{}).first;
+      it->second.engine = std::make_unique<diag::DiagnosticsEngine>(store, config.engine);
+      runtime.add_node(id + "/diagnostics");
+      if (!served.single()) runtime.log("serving plant " + id);
+    }
+    return it->second;
+  };
+  for (const std::string& id : served.listed()) plant(id);
   // A new loop or bearing (description_change.hpp): the engine starts again with the fault
   // signatures of the new loop, from the stored baselines, or from none for another bearing.
-  auto describe = [&](const bus::PlantDescription& d, double time) {
-    const DescriptionChange change = classify(loop ? &*loop : nullptr, d);
+  auto describe = [&](Plant& p, const bus::PlantDescription& d, double time) {
+    const DescriptionChange change = classify(p.loop ? &*p.loop : nullptr, d);
     if (change == DescriptionChange::same) return;
     diag::EngineConfig c = config.engine;
     try {
@@ -105,25 +139,23 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       a.plant_id = d.plant_id;
       a.fault = "new_bearing";
       a.time = time;
-      a.message = ("another bearing (" + bearing_difference(*loop, d) + "): " + std::to_string(forgotten) +
+      a.message = ("another bearing (" + bearing_difference(*p.loop, d) + "): " + std::to_string(forgotten) +
                    " baselines dropped, learned again")
                       .substr(0, bus::limits::text_length);
       alerts->write(a);
       runtime.metrics.published.Increment();
-      runtime.log(a.message);
+      runtime.log(d.plant_id + ": " + a.message);
     } else if (change == DescriptionChange::controller) {
-      runtime.log("plant description " + d.description_id + ": the same bearing in another loop (controller " +
-                  convert::controller_summary(d) + "); fault signatures recomputed, baselines kept");
+      runtime.log(d.plant_id + ": plant description " + d.description_id +
+                  ": the same bearing in another loop (controller " + convert::controller_summary(d) +
+                  "); fault signatures recomputed, baselines kept");
     }
-    engine = std::make_unique<diag::DiagnosticsEngine>(store, c);
-    loop = d;
+    p.engine = std::make_unique<diag::DiagnosticsEngine>(store, c);
+    p.loop = d;
   };
-  diag::Source source = diag::Source::sim;
-  PlantTime plant_time;
-  std::optional<double> last_retention;  // plant time of the last retention pass
-  auto retain = [&](double now) {
-    if (last_retention && now - *last_retention < config.retention_period) return;
-    last_retention = now;
+  auto retain = [&](Plant& p, const std::string& id, double now) {
+    if (p.last_retention && now - *p.last_retention < config.retention_period) return;
+    p.last_retention = now;
     try {
       const diag::RetentionReport r = store.apply_retention(config.retention, now);
       if (r.estimates_aggregated + r.aggregates_removed + r.alerts_removed > 0)
@@ -132,38 +164,47 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
                     " alerts past their age removed");
     } catch (const Error& e) {  // a full disk: the history stays as it is, the service goes on
       runtime.log("retention failed: " + std::string(e.what()));
-      runtime.set_health(bus::AlertLevel::warn, "trend store retention failed: " + std::string(e.what()));
+      runtime.set_health(id + "/diagnostics", bus::AlertLevel::warn,
+                         "trend store retention failed: " + std::string(e.what()));
     }
   };
-  ModelGaps gaps;
-  prometheus::Counter& missed_models = runtime.metrics.counter(
-      "ambid_models_missed_total", "identified models never received (a hole in the history)", {});
-  auto last_model = std::chrono::steady_clock::now();
-  bool stale = false;
-  bool identifier_failing = false;  // its Health says its windows keep failing (window_failures.hpp)
+  // When an identifier's writer is lost: serving one plant, its parameters are stale at once;
+  // serving several, those of the plants that got no model within the grace (the others are
+  // served by another identifier still running).
+  const double lost_grace = served.single() ? 0.0 : std::min(1.0, config.silence / 2);
+  std::optional<std::chrono::steady_clock::time_point> lost_at;
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantSourceState& s : sources->take())
-      if (s.plant_id == options.plant_id) source = convert::to_source(s.kind);
-    for (const bus::PlantDescription& d : descriptions->take())
-      if (d.plant_id == options.plant_id) describe(d, plant_time.last().value_or(0.0));
+      if (served.serves(s.plant_id)) plant(s.plant_id).source = convert::to_source(s.kind);
+    for (const bus::PlantDescription& d : descriptions->take()) {
+      if (!served.serves(d.plant_id)) continue;
+      Plant& p = plant(d.plant_id);
+      describe(p, d, p.plant_time.last().value_or(0.0));
+    }
     for (const bus::Health& h : health->take()) {
-      if (h.node != options.plant_id + "/identifier") continue;
-      const bool failing = reports_failing_windows(h, options.plant_id);
+      const auto slash = h.node.rfind("/identifier");
+      if (slash == std::string::npos || slash + 11 != h.node.size()) continue;
+      const std::string id = h.node.substr(0, slash);
+      if (!served.serves(id)) continue;
+      Plant& p = plant(id);
+      const bool failing = reports_failing_windows(h, id);
       // On the edge only: the next identified window brings the parameters back to OK.
-      if (failing && !identifier_failing)
-        publish(engine->mark_stale(options.plant_id, plant_time.last().value_or(0.0), "the identifier's " + h.message));
-      identifier_failing = failing;
+      if (failing && !p.identifier_failing)
+        publish(p.engine->mark_stale(id, p.plant_time.last().value_or(0.0), "the identifier's " + h.message));
+      p.identifier_failing = failing;
     }
     for (const bus::IdentifiedModel& m : models->take()) {
-      if (m.plant_id != options.plant_id) continue;
+      if (!served.serves(m.plant_id)) continue;
+      Plant& p = plant(m.plant_id);
+      const std::string plant_node = m.plant_id + "/diagnostics";
       runtime.metrics.received.Increment();
-      const std::optional<double> previous = plant_time.last();
-      const std::optional<PlantTime::Accepted> at = plant_time.accept(m.time, m.window);
+      const std::optional<double> previous = p.plant_time.last();
+      const std::optional<PlantTime::Accepted> at = p.plant_time.accept(m.time, m.window);
       if (!at) continue;  // already processed (a late-joiner replay)
       auto history_gap = [&](const std::string& message) {
         bus::Alert a;
-        a.plant_id = options.plant_id;
+        a.plant_id = m.plant_id;
         a.fault = "history_gap";
         a.parameter = "all";
         a.level = bus::AlertLevel::warn;
@@ -171,16 +212,16 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
         a.message = message.substr(0, bus::limits::text_length);
         alerts->write(a);
         runtime.metrics.published.Increment();
-        runtime.log(a.message);
-        runtime.set_health(bus::AlertLevel::warn, a.message);
+        runtime.log(m.plant_id + ": " + a.message);
+        runtime.set_health(plant_node, bus::AlertLevel::warn, a.message);
       };
-      if (const std::uint64_t missed = gaps.missed(m.seq); missed > 0) {
+      if (const std::uint64_t missed = p.gaps.missed(m.seq); missed > 0) {
         // This daemon fell behind or was stopped: the models in between are gone for good.
         missed_models.Increment(double(missed));
         history_gap("missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
                     " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
                     " s: a hole in the trend history");
-      } else if (gaps.restarted() && !at->after_restart && previous && at->time - *previous > 4.0 * m.window) {
+      } else if (p.gaps.restarted() && !at->after_restart && previous && at->time - *previous > 4.0 * m.window) {
         // A restarted identifier numbers from 0 again; the plant ran on meanwhile, unidentified.
         history_gap("the identifier restarted: no models from plant time " + std::to_string(*previous) + " to " +
                     std::to_string(at->time - m.window) + " s, a hole in the trend history");
@@ -188,28 +229,34 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       if (at->after_restart) {
         const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +
                                     " s continues the history at " + std::to_string(at->time) + " s";
-        runtime.log(message);
-        runtime.set_health(bus::AlertLevel::ok, message);
+        runtime.log(m.plant_id + ": " + message);
+        runtime.set_health(plant_node, bus::AlertLevel::ok, message);
       }
       try {
-        diag::EstimateWindow window = convert::estimate_window(m, source);
+        diag::EstimateWindow window = convert::estimate_window(m, p.source);
         window.time = at->time;
-        publish(engine->process(window));
-        retain(at->time);
-        last_model = std::chrono::steady_clock::now();
-        stale = false;
+        publish(p.engine->process(window));
+        retain(p, m.plant_id, at->time);
+        p.last_model = std::chrono::steady_clock::now();
+        p.stale = false;
       } catch (const Error& e) {
         runtime.metrics.rejected.Increment();
-        runtime.log("model " + std::to_string(m.seq) + " refused: " + e.what());
+        runtime.log(m.plant_id + ": model " + std::to_string(m.seq) + " refused: " + e.what());
       }
     }
-    bool silent = seconds_since(last_model) > config.silence;
     for (const bus::StatusEvent& e : models->events())
-      silent = silent || e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched;
-    if (silent && plant_time.last() && !stale) {
-      // The engine's clock is the plant's: the source went silent after the last model.
-      publish(engine->check_stale(std::nextafter(*plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
-      stale = true;
+      if (e.kind == bus::StatusKind::liveliness_lost || e.kind == bus::StatusKind::unmatched)
+        lost_at = std::chrono::steady_clock::now();
+    for (auto& [id, p] : plants) {
+      // An identifier went away: stale are the plants it served, those with no model since.
+      const bool orphaned = lost_at && p.last_model < *lost_at && seconds_since(*lost_at) >= lost_grace;
+      const bool silent = orphaned || seconds_since(p.last_model) > config.silence;
+      if (silent && p.plant_time.last() && !p.stale) {
+        // The engine's clock is the plant's: the source went silent after the last model.
+        publish(
+            p.engine->check_stale(std::nextafter(*p.plant_time.last() + config.engine.policy.stale_timeout, INFINITY)));
+        p.stale = true;
+      }
     }
   }
   return 0;

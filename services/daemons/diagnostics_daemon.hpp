@@ -11,8 +11,15 @@
 // restarted identifier (numbers from 0 again) whose first model comes more than 4 windows of
 // plant time after the last one.
 //
+// One process serves every plant id of its "plants" (served_plants.hpp): each has its own
+// engine (baselines, trend state, loop and fault signatures), clock and model numbering; the
+// trend store is shared (keyed by plant id). Health per plant on node PLANT/diagnostics, and,
+// serving a list or "all", the process's own node diagnostics@PID. The identifier's
+// failing-windows WARN is read per plant (node PLANT/identifier).
+//
 // Config (JSON, every key optional):
-//   {"store": "ambid-trend.sqlite", "learning_windows": 50, "persist_windows": 100,
+//   {"plants": ["bearing-1", ...] | "all" (default: the --plant-id), "store": "ambid-trend.sqlite",
+//    "learning_windows": 50, "persist_windows": 100,
 //    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
 //    retention of the trend store (diag::RetentionPolicy): "keep_windows_days": 7 (per-window
 //    estimates, then aggregated), "aggregate_bucket": 3600 (s per aggregate), "keep_days": 365,

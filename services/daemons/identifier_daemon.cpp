@@ -1,6 +1,10 @@
 #include "services/daemons/identifier_daemon.hpp"
 
+#include <unistd.h>
+
+#include <array>
 #include <cmath>
+#include <map>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -8,8 +12,10 @@
 #include "core/error.hpp"
 #include "services/daemons/continuous_estimator.hpp"
 #include "services/daemons/daemon_runtime.hpp"
+#include "services/daemons/foreign_models.hpp"
 #include "services/daemons/identify_window.hpp"
 #include "services/daemons/sample_gap_report.hpp"
+#include "services/daemons/served_plants.hpp"
 #include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
@@ -25,8 +31,8 @@ struct IdentifierConfig {
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "identifier config",
-                      {"method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent",
-                       "failing_fraction", "publish_rate", "forgetting"});
+                      {"plants", "method", "window", "settle", "transient_samples", "failing_consecutive",
+                       "failing_recent", "failing_fraction", "publish_rate", "forgetting"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -62,17 +68,27 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
   return c;
 }
 
+std::string host_name() {
+  std::array<char, 256> name{};
+  return gethostname(name.data(), name.size() - 1) == 0 ? std::string(name.data()) : std::string("localhost");
+}
+
 }  // namespace
 
 int run_identifier_daemon(const DaemonOptions& options) {
-  const IdentifierConfig config = identifier_config(load_config(options.config));
-  DescribedWindows window(config.windows);
+  const nlohmann::json json = load_config(options.config);
+  const IdentifierConfig config = identifier_config(json);
+  const ServedPlants served(json, options.plant_id, "identifier config");
 
   auto bus = options.connect();
-  DaemonRuntime runtime(*bus, "identifier", options.plant_id + "/identifier", options.metrics_port);
+  // One plant: its node as before; several: the process's own node, plus one per plant.
+  const std::string node =
+      served.single() ? options.plant_id + "/identifier" : "identifier@" + host_name() + ":" + std::to_string(getpid());
+  DaemonRuntime runtime(*bus, "identifier", node, options.metrics_port);
   auto samples = bus->reader<bus::PlantSamples>();
   auto descriptions = bus->reader<bus::PlantDescription>();
   auto models = bus->writer<bus::IdentifiedModel>();
+  auto echoes = bus->reader<bus::IdentifiedModel>();
   prometheus::Histogram& identification_seconds =
       runtime.metrics.histogram("ambid_identification_seconds", "wall time of one window's identification",
                                 {0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5});
@@ -83,53 +99,93 @@ int run_identifier_daemon(const DaemonOptions& options) {
   const std::string dropped_help = "samples that reached no identification";
   prometheus::Counter& dropped_unidentified =
       runtime.metrics.counter("ambid_samples_dropped_total", dropped_help, {{"reason", "unidentified"}});
+  prometheus::Counter& served_twice = runtime.metrics.counter(
+      "ambid_foreign_models_total", "models of a served plant published by another identifier", {});
   WindowSteps steps(runtime, dropped_help);
-  WindowFailures failures(config.failures, runtime.metrics);
-  SampleGapReport gaps(*bus, runtime, options.plant_id);  // holes in the samples
-  std::optional<ContinuousEstimator> continuous;
-  if (config.continuous) continuous.emplace(*config.continuous);
-  runtime.ready((continuous ? "continuous, published every " : "windows of ") + std::to_string(config.windows.window) +
-                " s, method " + config.identify.method + "; plant description from the bus");
-  std::uint64_t seq = 0;
+  // Everything the identifier keeps is per plant (windows, failure rule, model numbers).
+  struct Plant {
+    DescribedWindows window;
+    WindowFailures failures;
+    SampleGapReport gaps;                          // holes in the samples
+    std::optional<ContinuousEstimator> continuous;  // method rpem
+    std::uint64_t seq = 0;
+    bool served_twice = false;
+  };
+  std::map<std::string, Plant> plants;
+  auto plant = [&](const std::string& id) -> Plant& {
+    auto it = plants.find(id);
+    if (it == plants.end()) {
+      it = plants
+               .emplace(id, Plant{DescribedWindows(config.windows), WindowFailures(config.failures, runtime.metrics),
+                                  SampleGapReport(*bus, runtime, id), std::nullopt})
+               .first;
+      if (config.continuous) it->second.continuous.emplace(*config.continuous);
+      runtime.add_node(id + "/identifier");
+      if (!served.single()) runtime.log("serving plant " + id);
+    }
+    return it->second;
+  };
+  for (const std::string& id : served.listed()) plant(id);
+  ForeignModels foreign;
+  runtime.ready((config.continuous ? "continuous, published every " : "windows of ") +
+                std::to_string(config.windows.window) + " s, method " + config.identify.method + ", " +
+                served.describe() + "; plant description from the bus");
   while (runtime.running()) {
     bus->wait(std::chrono::milliseconds(100));
     for (const bus::PlantDescription& d : descriptions->take())
-      if (d.plant_id == options.plant_id) steps.describe(window, d);
+      if (served.serves(d.plant_id)) steps.describe(plant(d.plant_id).window, d, served.single() ? "" : d.plant_id);
     for (const bus::PlantSamples& batch : samples->take()) {
-      if (batch.plant_id != options.plant_id) continue;
+      if (!served.serves(batch.plant_id)) continue;
+      Plant& p = plant(batch.plant_id);
+      const std::string plant_node = batch.plant_id + "/identifier";
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
-      gaps.check(batch);
-      steps.report(window.add(batch));
-      while (window.full()) {
-        const Experiment w = window.take();
+      p.gaps.check(batch);
+      steps.report(p.window.add(batch), served.single() ? "" : batch.plant_id);
+      while (p.window.full()) {
+        const Experiment w = p.window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
           // Only published models are numbered: a gap in seq is a model a consumer missed.
-          bus::IdentifiedModel model = continuous ? continuous->identify(w, options.plant_id, seq)
-                                                  : identify_window(w, options.plant_id, seq, config.identify);
-          ++seq;
+          bus::IdentifiedModel model = p.continuous ? p.continuous->identify(w, batch.plant_id, p.seq)
+                                                    : identify_window(w, batch.plant_id, p.seq, config.identify);
+          ++p.seq;
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
+          foreign.published(model);
           runtime.metrics.published.Increment();
-          if (failures.identified() == WindowFailures::Change::cleared) {
-            runtime.set_health(bus::AlertLevel::ok, failures.message());
-            runtime.log(failures.message());
-          } else if (failures.failing()) {
-            runtime.set_health(bus::AlertLevel::warn, failures.message());  // its counts move on
+          if (p.failures.identified() == WindowFailures::Change::cleared) {
+            runtime.set_health(plant_node, bus::AlertLevel::ok, p.failures.message());
+            runtime.log(batch.plant_id + ": " + p.failures.message());
+          } else if (p.failures.failing()) {
+            runtime.set_health(plant_node, bus::AlertLevel::warn, p.failures.message());  // its counts move on
           }
         } catch (const Error& e) {
           const ident::WindowFailure failure = ident::window_failure(e);
           runtime.metrics.rejected.Increment();
           dropped_unidentified.Increment(double(w.samples()));
-          runtime.log("window ending " + std::to_string(w.t(w.samples() - 1)) + " s not identified (" + failure.reason +
-                      "): " + failure.message);
-          const WindowFailures::Change change = failures.failed(failure);
+          runtime.log(batch.plant_id + ": window ending " + std::to_string(w.t(w.samples() - 1)) +
+                      " s not identified (" + failure.reason + "): " + failure.message);
+          const WindowFailures::Change change = p.failures.failed(failure);
           // While failing, Health follows every failed window (its counts and last reason).
-          if (failures.failing()) runtime.set_health(bus::AlertLevel::warn, failures.message());
-          if (change == WindowFailures::Change::started) runtime.log(failures.message());
+          if (p.failures.failing()) runtime.set_health(plant_node, bus::AlertLevel::warn, p.failures.message());
+          if (change == WindowFailures::Change::started) runtime.log(batch.plant_id + ": " + p.failures.message());
         }
       }
+    }
+    for (const bus::IdentifiedModel& m : echoes->take()) {
+      if (!served.serves(m.plant_id) || !foreign.foreign(m)) continue;
+      served_twice.Increment();
+      Plant& p = plant(m.plant_id);
+      if (p.served_twice) continue;
+      p.served_twice = true;  // warned once; the plant stays served (which one should stop is the operator's call)
+      const std::string message = "plant " + m.plant_id +
+                                  " is served twice: another identifier publishes its models too (divide the "
+                                  "plant ids between the identifiers' \"plants\" lists)";
+      runtime.log(message);
+      runtime.set_health(bus::AlertLevel::warn, message);
+      if (node != m.plant_id + "/identifier")
+        runtime.set_health(m.plant_id + "/identifier", bus::AlertLevel::warn, message);
     }
   }
   return 0;

@@ -4,8 +4,15 @@
 // plant description its samples name (PlantDescription on the bus, described_windows.hpp):
 // model, nominal parameters, signals, operating point and controller come with the data.
 //
+// One process serves every plant id of its "plants" (served_plants.hpp), each with its own
+// windows, failure rule and model numbers; Health per plant on node PLANT/identifier (the
+// failing-windows WARN there), and, serving a list or "all", the process's own node
+// identifier@HOST:PID. A plant whose models another identifier also publishes
+// (foreign_models.hpp) is logged, counted (ambid_foreign_models_total) and put in Health WARN.
+//
 // Config (JSON, every key optional):
-//   {"method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
+//   {"plants": ["bearing-1", ...] | "all" (default: the --plant-id),
+//    "method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
 //    listed by `ambid daemon identifier --help`; an unknown name is refused at start),
 //    "window": 0.25 (s of samples per identification),
 //    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal

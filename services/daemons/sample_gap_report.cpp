@@ -24,7 +24,7 @@ void SampleGapReport::check(const bus::PlantSamples& batch) {
   runtime_.metrics.published.Increment();
   missed_.Increment(double(gap->samples));
   runtime_.log(a.message);
-  runtime_.set_health(bus::AlertLevel::warn, a.message);
+  runtime_.set_health(plant_id_ + "/identifier", bus::AlertLevel::warn, a.message);
 }
 
 }  // namespace ambid::daemons

@@ -13,50 +13,52 @@ WindowSteps::WindowSteps(DaemonRuntime& runtime, const std::string& help)
       description_change_(
           runtime.metrics.counter("ambid_samples_dropped_total", help, {{"reason", "description_change"}})) {}
 
-void WindowSteps::report(const std::vector<DescribedWindows::Step>& steps) {
+void WindowSteps::report(const std::vector<DescribedWindows::Step>& steps, const std::string& plant) {
   using Event = DescribedWindows::Event;
+  const std::string at = plant.empty() ? std::string{} : plant + ": ";
   for (const DescribedWindows::Step& s : steps) {
     switch (s.event) {
       case Event::added:
         break;
       case Event::waiting:
-        if (!waiting_logged_) runtime_.log("samples wait: " + s.reason);
+        if (!waiting_logged_) runtime_.log(at + "samples wait: " + s.reason);
         waiting_logged_ = true;
         break;
       case Event::rejected:
         runtime_.metrics.rejected.Increment();
         rejected_.Increment(double(s.samples));
-        runtime_.log("batch rejected: " + s.reason);
-        runtime_.set_health(bus::AlertLevel::warn, "samples rejected: " + s.reason);
+        runtime_.log(at + "batch rejected: " + s.reason);
+        runtime_.set_health(bus::AlertLevel::warn, at + "samples rejected: " + s.reason);
         break;
       case Event::gap:
         gap_.Increment(double(s.samples));
-        if (s.samples > 0) runtime_.log(std::to_string(s.samples) + " samples dropped: " + s.reason);
+        if (s.samples > 0) runtime_.log(at + std::to_string(s.samples) + " samples dropped: " + s.reason);
         break;
       case Event::record_end:
         record_end_.Increment(double(s.samples));
         break;
       case Event::dropped_no_description:
         no_description_.Increment(double(s.samples));
-        runtime_.log(std::to_string(s.samples) + " samples dropped: " + s.reason);
-        runtime_.set_health(bus::AlertLevel::warn, "samples dropped: " + s.reason);
+        runtime_.log(at + std::to_string(s.samples) + " samples dropped: " + s.reason);
+        runtime_.set_health(bus::AlertLevel::warn, at + "samples dropped: " + s.reason);
         break;
       case Event::description_change:
         description_change_.Increment(double(s.samples));
         waiting_logged_ = false;
-        runtime_.log("windows restart: " + s.reason);
+        runtime_.log(at + "windows restart: " + s.reason);
         break;
     }
   }
 }
 
-void WindowSteps::describe(DescribedWindows& windows, const bus::PlantDescription& d) {
+void WindowSteps::describe(DescribedWindows& windows, const bus::PlantDescription& d, const std::string& plant) {
+  const std::string at = plant.empty() ? std::string{} : plant + ": ";
   try {
-    report(windows.describe(d));
+    report(windows.describe(d), plant);
   } catch (const Error& e) {
     runtime_.metrics.rejected.Increment();
-    runtime_.log(std::string("plant description refused: ") + e.what());
-    runtime_.set_health(bus::AlertLevel::warn, std::string("plant description refused: ") + e.what());
+    runtime_.log(at + std::string("plant description refused: ") + e.what());
+    runtime_.set_health(bus::AlertLevel::warn, at + std::string("plant description refused: ") + e.what());
   }
 }
 

@@ -15,10 +15,11 @@ class WindowSteps {
   // help: the help text of ambid_samples_dropped_total in this daemon.
   WindowSteps(DaemonRuntime& runtime, const std::string& help);
 
-  void report(const std::vector<DescribedWindows::Step>& steps);
+  // plant: for a daemon serving several plants, the plant id its log lines and Health start with.
+  void report(const std::vector<DescribedWindows::Step>& steps, const std::string& plant = {});
   // windows.describe(d), reported; a description that does not hold up is logged, counted as
   // rejected and sets Health WARN.
-  void describe(DescribedWindows& windows, const bus::PlantDescription& d);
+  void describe(DescribedWindows& windows, const bus::PlantDescription& d, const std::string& plant = {});
 
  private:
   DaemonRuntime& runtime_;

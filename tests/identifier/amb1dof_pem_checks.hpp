@@ -33,8 +33,11 @@ inline const std::vector<std::string>& amb1dof_record_controllers() {
 inline double noise_free_amplitude(const std::string& controller) { return controller == "observer" ? 0.5 : 1.0; }
 inline constexpr double kWindowAmplitude = 2.0;
 // 10 s at realistic noise: 2 V where the loop lets the currents move; the PID's stiff current
-// loops (1000 V/A) leave v4, v6, v7 with ~1 % sigma at 2 V, so it gets 6 V.
-inline double noisy_amplitude(const std::string& controller) { return controller == "pid" ? 6.0 : 2.0; }
+// loops (1000 V/A) leave v4, v6, v7 with ~1 % sigma at 2 V, so it gets 6 V, and so does the
+// lead-lag (the same current loops).
+inline double noisy_amplitude(const std::string& controller) {
+  return controller == "pid" || controller == "leadlag" ? 6.0 : 2.0;
+}
 // A realistic bearing's sensors: 0.1 um on x, 1 mA on each current.
 inline constexpr double kPositionNoise = 1e-7, kCurrentNoise = 1e-3;
 
@@ -66,8 +69,11 @@ inline double worst_v_error(const Model& m, const std::map<std::string, double>&
 
 // The largest scatter per 1 s window at kWindowAmplitude: 1 %, except under the PID loop,
 // whose stiff current loops leave R1 and R2 with ~2.3 % sigma per window at 2 V (measured:
-// the information is not in such data, whatever the estimator).
-inline double max_window_scatter(const std::string& controller) { return controller == "pid" ? 0.04 : 0.01; }
+// the information is not in such data, whatever the estimator), and the lead-lag's (the same
+// current loops; not measured yet on its own).
+inline double max_window_scatter(const std::string& controller) {
+  return controller == "pid" || controller == "leadlag" ? 0.04 : 0.01;
+}
 
 // 1 s windows of one noisy record, each identified cold: the scatter of R1, R2, kw1, kw2 about
 // their mean at most max_window_scatter (one sigma), the mean reported sigma within a factor

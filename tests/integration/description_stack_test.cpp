@@ -1,10 +1,11 @@
-// The plant description travels with the data (issue 14): recordings made with two different
-// controllers (plant_sim's lqr observer and pid) replayed through the running stack are
+// The plant description travels with the data (issue 14): recordings made with three different
+// controllers (plant_sim's lqr observer, pid and leadlag) replayed through the running stack are
 // identified as the offline method identifies the same windows, with no alert and no scenario
 // file anywhere downstream of the plant; a late identifier of the other vendor gets the
 // description; a swap to the other controller raises nothing, the same bearing with R1 +20 %
 // under the new loop an ERROR on coil 1; another bearing starts a new baseline and the alerts
-// say so; record -> replay -> identify keeps the description. Domains 164..168; 10-50 s each.
+// say so; record -> replay -> identify keeps the description. Domains 164..168 and 221; 10-50 s
+// each.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -98,7 +99,7 @@ void expect_no_alert(const Stack& stack) {
 class ReplayedController : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ReplayedController, IdentifiesAsOfflineOnTheSameWindowsWithoutAlert) {
-  Stack stack("description_" + GetParam(), GetParam() == "lqr" ? 165 : 166);
+  Stack stack("description_" + GetParam(), GetParam() == "lqr" ? 165 : GetParam() == "pid" ? 166 : 221);
   const std::string file = record(stack, GetParam());
   const std::vector<double> offline = offline_r1(file);
   // The method's accuracy on these windows: their mean R1 within 2.5 % of the truth.
@@ -114,7 +115,7 @@ TEST_P(ReplayedController, IdentifiesAsOfflineOnTheSameWindowsWithoutAlert) {
   EXPECT_THAT(stack.ambid("status --wait 2").output, HasSubstr("description "));
 }
 
-INSTANTIATE_TEST_SUITE_P(Stack, ReplayedController, ::testing::Values("lqr", "pid"));
+INSTANTIATE_TEST_SUITE_P(Stack, ReplayedController, ::testing::Values("lqr", "pid", "leadlag"));
 
 TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultErrors) {
   Stack stack("description_swap", 167, {{"plant", "fastdds"}, {"identifier", "cyclone"}, {"diagnostics", "fastdds"}});

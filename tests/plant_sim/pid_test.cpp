@@ -96,6 +96,27 @@ TEST(LeadLag, SingleSectionMatchesTustinDifferenceEquation) {
   }
 }
 
+TEST(LeadLag, IntegralAddsTheForwardEulerSumOfTheError) {
+  const double T = 1e-3, k = 2.5, lead = 8e-3, lag = 1e-3, ki = 40.0;
+  const StateSpaceController c = lead_lag_controller({{"y", {{"u", 1.0}}, k, {{lead, lag}}, ki}}, T, {"u"});
+  ASSERT_EQ(c.states(), 2);
+  const int steps = 40;
+  Eigen::MatrixXd y(steps, 1);
+  for (int i = 0; i < steps; ++i) y(i, 0) = std::sin(0.3 * i) + 0.2;
+  const Eigen::MatrixXd uf = simulate(as_system(c), y);
+  // The section's difference equation as above, plus ki T (e[0] + ... + e[k-1]).
+  double c_prev = 0.0, e_prev = 0.0, sum = 0.0;
+  for (int i = 0; i < steps; ++i) {
+    const double e = -y(i, 0);
+    const double section =
+        (k * ((2 * lead / T + 1) * e + (1 - 2 * lead / T) * e_prev) - (1 - 2 * lag / T) * c_prev) / (2 * lag / T + 1);
+    EXPECT_NEAR(uf(i, 0), section + ki * T * sum, 1e-12) << "k = " << i;
+    c_prev = section;
+    e_prev = e;
+    sum += e;
+  }
+}
+
 TEST(LeadLag, CascadeFrequencyResponseIsTheWarpedContinuousOne) {
   const double T = 1e-4, gain = 3.0;
   const std::vector<LeadLagSection> sections = {{5e-3, 5e-4}, {0.0, 2e-3}, {1e-3, 1e-2}};

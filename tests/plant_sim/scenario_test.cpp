@@ -22,7 +22,7 @@ struct Case {
 
 std::vector<Case> cases() {
   std::vector<Case> all;
-  for (const std::string c : {"lqr", "pid"}) {
+  for (const std::string c : {"lqr", "pid", "leadlag"}) {
     all.push_back({c, "", 1.0});
     for (const std::string p : {"R1", "R2", "kw1", "kw2"})
       for (double f : {0.8, 1.2}) all.push_back({c, p, f});

@@ -39,9 +39,9 @@ sim::ObserverControllerOptions other_observer_options() {
 sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
   const std::vector<std::string>& known = amb1dof_record_controllers();
   if (std::find(known.begin(), known.end(), o.controller) == known.end())
-    throw Error("amb1dof records: unknown controller '" + o.controller + "' (known: lqr, pid, observer)");
+    throw Error("amb1dof records: unknown controller '" + o.controller + "' (known: lqr, pid, leadlag, observer)");
   sim::ScenarioOptions s;
-  s.controller = o.controller == "pid" ? "pid" : "lqr";
+  s.controller = o.controller == "observer" ? "lqr" : o.controller;  // observer: lqr's loop, other weights
   s.true_parameters = o.true_parameters;
   s.sample_time = o.sample_time;
   s.duration = o.settle + o.duration;
@@ -67,7 +67,7 @@ sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
 }  // namespace
 
 const std::vector<std::string>& amb1dof_record_controllers() {
-  static const std::vector<std::string> names = {"lqr", "pid", "observer"};
+  static const std::vector<std::string> names = {"lqr", "pid", "leadlag", "observer"};
   return names;
 }
 

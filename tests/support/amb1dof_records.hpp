@@ -9,6 +9,8 @@
 // model:
 //   "lqr"       ambid's LQR + observer with integral action (plant_sim scenario "lqr");
 //   "pid"       a decentralised PID on x with proportional current loops (scenario "pid");
+//   "leadlag"   a decentralised lead-lag with integral action on x, the same current loops
+//               (scenario "leadlag");
 //   "observer"  an LQR + observer designed with other weights (a softer regulator, observer
 //               poles within radius 0.9), see the definition.
 // Truth: the true plant linearised where its closed loop settles. Every controller integrates
@@ -25,7 +27,7 @@
 
 namespace ambid::test_support {
 
-// "lqr", "pid", "observer".
+// "lqr", "pid", "leadlag", "observer".
 const std::vector<std::string>& amb1dof_record_controllers();
 
 struct Amb1dofRecordOptions {
