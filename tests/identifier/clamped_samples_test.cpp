@@ -2,7 +2,9 @@
 // whose output clamps act (the LAMSTF loop of plant_sim/lamstf_scenario.hpp with its coil
 // currents clamped; the runner records the commanded u and applies the clamped one),
 // identify_experiment leaves them out and stays near the truth, while the same record with the
-// limits removed from its sidecar (so nothing marks the clamped samples) is biased.
+// limits removed from its sidecar (so nothing marks the clamped samples) is biased. Measured
+// (seed 21, 176 of 8000 samples clamped): closed-loop 0.38 % left out, 1.70 % kept; okid and
+// projection 0.40 % and 1.59 %.
 //
 // Truth: the analytical model sampled by zero-order hold; error (seed 002, 4.36): mean over
 // j = 0..29 of ||C A^j B - Chat Ahat^j Bhat||_2 / ||C A^j B||_2, percent.
