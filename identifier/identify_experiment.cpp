@@ -464,7 +464,12 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   model.plant_model = e.plant.model;
   model.method = o.method;
   model.sample_time = e.sample_time;
-  method.fit(fit, resolved, model);
+  try {
+    method.fit(fit, resolved, model);
+  } catch (const InsufficientData& error) {
+    if (fit_clamped == 0 || method.leaves_out_clamped) throw;
+    throw InsufficientData(std::string(error.what()) + " (" + clamp_handling + ")");
+  }
   model.discrete.sample_time = e.sample_time;
   model.extra.json()["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
   if (fit_clamped > 0)

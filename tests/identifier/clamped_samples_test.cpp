@@ -8,6 +8,7 @@
 //
 // Truth: the analytical model sampled by zero-order hold; error (seed 002, 4.36): mean over
 // j = 0..29 of ||C A^j B - Chat Ahat^j Bhat||_2 / ||C A^j B||_2, percent.
+#include <algorithm>
 #include <iostream>
 #include <string>
 
@@ -77,6 +78,38 @@ TEST(ClampedSamples, LeftOutOfTheArxMethodsWhichStayNearTheTruth) {
     EXPECT_EQ(report.at("fit_window").get<int>() + report.at("validation").get<int>(), mask.clamped_samples);
     EXPECT_EQ(kept.extra.json().at("clamped_samples").at("fit_window").get<int>(), 0);
   }
+}
+
+// deadbeat runs its regression over contiguous samples: it is fitted on the longest stretch of
+// the fit window (the first 75 %) without a clamp, and says so. amb1dof_voltage with its
+// amplifier commands clamped at 8.85 V (the operating point is 8.75 V).
+TEST(ClampedSamples, MethodsThatCannotSkipSamplesFitTheLongestStretchWithoutOne) {
+  sim::ScenarioOptions o;
+  o.duration = 1.0;
+  o.seed = 3;
+  o.input_limit = 8.85;
+  const Experiment e = sim::simulate_scenario(o);
+  const Eigen::Index fit_end = e.samples() - Eigen::Index(0.25 * double(e.samples()));
+  const std::vector<bool> clamped = clamped_samples(e).clamped;
+  Eigen::Index longest = 0, run = 0, in_fit = 0;
+  for (Eigen::Index k = 0; k < fit_end; ++k) {
+    run = clamped[std::size_t(k)] ? 0 : run + 1;
+    longest = std::max(longest, run);
+    in_fit += clamped[std::size_t(k)] ? 1 : 0;
+  }
+  ASSERT_GT(in_fit, 0);
+  ASSERT_LT(longest, fit_end);
+  IdentifyOptions io;
+  io.method = "deadbeat";
+  const Model m = identify_experiment(e, io);
+  EXPECT_EQ(m.extra.json().at("samples").at("fit").get<Eigen::Index>(), longest);
+  EXPECT_EQ(m.extra.json().at("clamped_samples").at("fit_window").get<Eigen::Index>(), in_fit);
+  const std::string handling = m.extra.json().at("clamped_samples").at("fit").get<std::string>();
+  EXPECT_NE(handling.find("method 'deadbeat' cannot leave single samples out: fitted on the longest stretch"),
+            std::string::npos)
+      << handling;
+  std::cout << "deadbeat: " << in_fit << " clamped samples in the fit window of " << fit_end << "; fitted on "
+            << longest << "; v1 = " << m.parameters.at("v1") << "\n";
 }
 
 }  // namespace
