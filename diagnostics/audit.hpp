@@ -23,7 +23,10 @@
 // nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
 // segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
 // "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
-// excitation_rms, log_ratio, log_ratio_se}], z, dependent}.
+// excitation_rms, log_ratio, log_ratio_se}], z, dependent}; "clamped_samples" {count,
+// left_out_of}: the samples where a controller clamp acted, which no NRMSE scores.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +45,8 @@
 namespace ambid::diag {
 
 struct AuditOptions {
+  // Called at the start of each screened or fitted candidate (stage, done, total); empty: none.
+  std::function<void(const std::string& stage, std::size_t done, std::size_t total)> progress;
   double estimation_fraction = 0.5;
   int fitted_candidates = 5;
   double complexity_penalty = 0.02;     // relative score penalty per fitted parameter (ranking)
@@ -66,9 +71,10 @@ struct AuditResult {
   double baseline_total = 0.0;         // mean of the per-output NRMSE
   std::vector<AuditFinding> findings;  // fitted candidates, best score first
   std::string cause = "none";
-  double false_acceptance = 0.0;  // AuditOptions::false_acceptance
-  double z_threshold = 0.0;       // the z a finding needed to be accepted
-  Segment estimation, validation;
+  double false_acceptance = 0.0;     // AuditOptions::false_acceptance
+  double z_threshold = 0.0;          // the z a finding needed to be accepted
+  Segment estimation, validation;    // both leave out the samples where a controller clamp acted
+  Eigen::Index clamped_samples = 0;  // of the record (controller.output_limits, state_limits)
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
   // segment, |correlation| of each nominal residual with each excitation (outputs x r).

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "core/no_continuous_equivalent.hpp"
 #include "identifier/amb1dof_structure.hpp"
@@ -77,14 +78,29 @@ DeadbeatOptions instrumental_variables(const IdentifyOptions& o) {
 
 using Breaks = std::vector<Index>;
 // A realisation of the ARX -> Markov -> ERA methods from the part of the record without the
-// samples at `breaks` (the segment jackknife's joints).
+// samples at `breaks` (the segment jackknife's joints) and without the samples where a
+// controller clamp acted (with_clamps).
 using Realize = DiscreteSystem (*)(const Experiment&, const IdentifyOptions&, const Breaks&);
+
+// `breaks` plus a break at c and at c + 1 for every sample c where a controller clamp acted:
+// the ARX leaves out every equation whose window k-q .. k holds c (ArxOptions::breaks drops
+// k in [b, b + q) for a break b), since u[c] is not what the plant received or r[c] is not
+// what the loop added (experiment-format.md: not exogenous).
+Breaks with_clamps(const Experiment& e, Breaks breaks) {
+  const std::vector<bool> clamped = clamped_samples(e).clamped;
+  for (std::size_t c = 0; c < clamped.size(); ++c)
+    if (clamped[c]) {
+      breaks.push_back(Index(c));
+      breaks.push_back(Index(c) + 1);
+    }
+  return breaks;
+}
 
 DiscreteSystem realize_okid(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   const LoopSignals s = signals_of(e);
   ArxOptions ao;
   ao.order = o.arx_order;
-  ao.breaks = breaks;
+  ao.breaks = with_clamps(e, breaks);
   const ArxModel arx = fit_arx(s.y, s.u, ao);
   EraOptions eo;
   eo.order = model_order(e, o);
@@ -96,7 +112,7 @@ DiscreteSystem realize_okid(const Experiment& e, const IdentifyOptions& o, const
 template <typename Options>
 Options arx_era_options(const Experiment& e, const IdentifyOptions& o, const Breaks& breaks) {
   Options out;
-  out.breaks = breaks;
+  out.breaks = with_clamps(e, breaks);
   out.arx_order = o.arx_order;
   out.markov_count = o.markov_count;
   out.sample_time = e.sample_time;
@@ -225,13 +241,29 @@ void validate_on(const Experiment& validation, Model& model) {
   }
   const LoopSignals s = signals_of(validation);
   const KnownController k = known_controller(*validation.controller, s.u_names, s.y_names);
-  const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state);
+  const Eigen::VectorXd nrmse = closed_loop_nrmse(model.discrete, k, s.r, s.y, validation.controller->initial_state,
+                                                  clamped_samples(validation).clamped);
   if (!nrmse.allFinite()) {
     add_warning(
         model, "the closed-loop simulation of the model with the recorded controller diverges: fit.nrmse not computed");
     return;
   }
   for (Index j = 0; j < nrmse.size(); ++j) model.fit_nrmse[s.y_names[std::size_t(j)]] = nrmse(j);
+}
+
+Index count_clamped(const Experiment& e) { return clamped_samples(e).clamped_samples; }
+
+// [begin, end) of the longest run of samples of `e` without a controller clamp acting.
+std::pair<Index, Index> longest_unclamped_stretch(const Experiment& e) {
+  const std::vector<bool> clamped = clamped_samples(e).clamped;
+  std::pair<Index, Index> best{0, 0};
+  Index begin = 0;
+  for (Index k = 0; k <= Index(clamped.size()); ++k) {
+    if (k < Index(clamped.size()) && !clamped[std::size_t(k)]) continue;
+    if (k - begin > best.second - best.first) best = {begin, k};
+    begin = k + 1;
+  }
+  return best;
 }
 
 // What method_registry() requires of the experiment, in this order.
@@ -409,7 +441,22 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   if (usable - validation < 2)
     throw InsufficientData(kWho + ": " + std::to_string(e.samples()) + " samples, " + std::to_string(o.skip_samples) +
                            " skipped, leave nothing to fit");
-  const Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
+  Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
+  const Index fit_clamped = count_clamped(fit);
+  std::string clamp_handling = "none in the fit window";
+  if (fit_clamped > 0 && method.leaves_out_clamped) {
+    clamp_handling = "left out of the ARX regressions (every equation whose window holds one)";
+  } else if (fit_clamped > 0) {
+    const auto [begin, end] = longest_unclamped_stretch(fit);
+    if (end - begin < 2)
+      throw InsufficientData(kWho + ": a controller clamp acts in " + std::to_string(fit_clamped) + " of the " +
+                             std::to_string(fit.samples()) + " samples of the fit window: no stretch without one");
+    clamp_handling = "method '" + o.method +
+                     "' cannot leave single samples out: fitted on the longest stretch without a clamp, samples [" +
+                     std::to_string(o.skip_samples + begin) + ", " + std::to_string(o.skip_samples + end) +
+                     ") of the record";
+    fit = experiment_segment(fit, begin, end);
+  }
   IdentifyOptions resolved = o;
   if (resolved.instrument_lags == 0) resolved.instrument_lags = kDefaultInstrumentLags;
 
@@ -417,10 +464,30 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   model.plant_model = e.plant.model;
   model.method = o.method;
   model.sample_time = e.sample_time;
-  method.fit(fit, resolved, model);
+  try {
+    method.fit(fit, resolved, model);
+  } catch (const InsufficientData& error) {
+    if (fit_clamped == 0 || method.leaves_out_clamped) throw;
+    throw InsufficientData(std::string(error.what()) + " (" + clamp_handling + ")");
+  }
   model.discrete.sample_time = e.sample_time;
   model.extra.json()["samples"] = {{"skipped", o.skip_samples}, {"fit", fit.samples()}, {"validation", validation}};
-  if (validation >= 2) validate_on(experiment_segment(e, e.samples() - validation, e.samples()), model);
+  if (fit_clamped > 0)
+    add_warning(model, std::to_string(fit_clamped) +
+                           " samples of the fit window have a controller "
+                           "clamp acting (not exogenous): " +
+                           clamp_handling);
+  Index validation_clamped = 0;
+  if (validation >= 2) {
+    const Experiment scored = experiment_segment(e, e.samples() - validation, e.samples());
+    validation_clamped = count_clamped(scored);
+    validate_on(scored, model);
+  }
+  model.extra.json()["clamped_samples"] = {
+      {"fit_window", fit_clamped},
+      {"fit", clamp_handling},
+      {"validation", validation_clamped},
+      {"validation_scoring", "left out of fit.nrmse and of the initial-state fit"}};
   model.validate();
   return model;
 }

@@ -12,6 +12,12 @@
 //
 // The record is split: the first (1 - validation_fraction) is fitted, the rest only validates
 // (fit.nrmse, closed-loop simulation with the recorded controller, closed_loop_validation.hpp).
+// Samples where a controller clamp acted (controller.output_limits, state_limits;
+// core/controller_replay.hpp) are not exogenous: the ARX methods (okid, closed-loop,
+// projection) leave every equation whose window holds one out of their regressions, the others
+// (which run a predictor or a realisation over contiguous samples) are fitted on the longest
+// stretch of the fit window without one, and fit.nrmse does not score them. model.json says
+// how many there were and what was done (extra "clamped_samples", and a warning).
 // Nothing here stabilises an identified model: an unstable plant comes out unstable.
 // When an ERA realisation has no continuous-time equivalent (d2c_zoh refuses a discrete
 // eigenvalue on the closed negative real axis, as noise can put one there), the model keeps

@@ -17,6 +17,8 @@ const std::vector<IdentificationFamily>& identification_families() {
        nullptr,
        {"deadbeat", "deadbeat-iv", "pem", "rpem"}},
       {"maglev1coil_voltage", {"x", "i"}, {"u"}, 3, nullptr, fit_maglev_greybox_model, {"greybox"}},
+      // Seed 002's 10 states (5 positions, 5 rates); realisation coordinates only.
+      {"lamstf", {"s1", "s2", "s3", "s4", "s5"}, {"i1", "i2", "i3", "i4", "i5"}, 10, nullptr, nullptr, {}},
   };
   return families;
 }

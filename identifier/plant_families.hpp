@@ -31,7 +31,7 @@ struct IdentificationFamily {
 };
 
 const std::vector<IdentificationFamily>& identification_families();
-// "amb1dof_voltage, maglev1coil_voltage".
+// "amb1dof_voltage, maglev1coil_voltage, lamstf".
 std::string identification_family_names();
 // The family called `model`, or null for a model the identifier has no structure for.
 const IdentificationFamily* find_identification_family(const std::string& model);

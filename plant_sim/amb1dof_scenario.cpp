@@ -117,6 +117,7 @@ Scenario build_amb1dof_scenario(const ScenarioOptions& o) {
                                     {"force noise", o.force_noise},
                                     {"input limit", o.input_limit}})
     require(std::isfinite(value) && value >= 0, std::string(what) + " must be >= 0, got " + std::to_string(value));
+  require(o.noise_level == 0.0, "a relative noise level is lamstf's; give position, current and force noise");
 
   const Amb1dofParameters nominal = Amb1dofParameters::nominal();
   Amb1dofParameters true_parameters = nominal;

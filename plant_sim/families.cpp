@@ -7,6 +7,9 @@
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_scenario.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
+#include "plant_sim/lamstf.hpp"
+#include "plant_sim/lamstf_scenario.hpp"
+#include "plant_sim/linear_plant.hpp"
 #include "plant_sim/maglev1coil_voltage.hpp"
 #include "plant_sim/maglev_linearize.hpp"
 #include "plant_sim/maglev_scenario.hpp"
@@ -47,6 +50,15 @@ ContinuousSystem maglev_linearize_header(const Experiment& header) {
   return (measured_point(header) ? maglev_linearize_measured(p, op) : maglev_linearize(p, op.x)).system;
 }
 
+const std::vector<std::string>& no_parameters() {
+  static const std::vector<std::string> none;
+  return none;
+}
+
+std::unique_ptr<Plant> lamstf_plant(const Experiment&) { return std::make_unique<LinearPlant>(lamstf()); }
+
+ContinuousSystem lamstf_linearize(const Experiment&) { return lamstf().system; }
+
 }  // namespace
 
 const std::vector<PlantFamily>& plant_families() {
@@ -57,6 +69,9 @@ const std::vector<PlantFamily>& plant_families() {
       {"maglev1coil_voltage", "one electromagnet levitating a body against gravity (maglev-rig.md)",
        MaglevParameters::names, [] { return MaglevParameters::nominal().to_map(); }, maglev_plant,
        maglev_linearize_header, nullptr, simulate_maglev, maglev_default_options, false},
+      {"lamstf", "LAMSTF 5-DOF magnetic suspension, seed 002's linear analytical model under its LQR", no_parameters,
+       [] { return std::map<std::string, double>{}; }, lamstf_plant, lamstf_linearize, build_lamstf_scenario,
+       simulate_lamstf, lamstf_default_options, false},
   };
   return families;
 }

@@ -39,9 +39,9 @@ struct PlantFamily {
   bool effect_catalogue = false;
 };
 
-// Every family, amb1dof_voltage first.
+// Every family, amb1dof_voltage first, then maglev1coil_voltage and lamstf.
 const std::vector<PlantFamily>& plant_families();
-// "amb1dof_voltage, maglev1coil_voltage".
+// "amb1dof_voltage, maglev1coil_voltage, lamstf".
 std::string plant_family_names();
 // The family called `name`. Error "WHO: unknown plant 'NAME' (known: ...)".
 const PlantFamily& plant_family(const std::string& name, const std::string& who);

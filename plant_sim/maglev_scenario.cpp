@@ -22,6 +22,7 @@ Experiment simulate_maglev(const ScenarioOptions& o, ClosedLoopStatistics* stati
   require(o.controller == "pid", "the rig runs its board's PID (controller 'pid'), got '" + o.controller + "'");
   require(o.excitation == "uniform" || o.excitation == "none",
           "excitation must be uniform (white noise added to u, not logged) or none, got '" + o.excitation + "'");
+  require(o.noise_level == 0.0, "a relative noise level is lamstf's; the rig's noise is its own");
   require(o.input_limit == 0.0, "the rig clamps its command to [0, v_ref]: set --rig v_ref=VALUE, not an input limit");
   require(std::isfinite(o.duration) && o.duration >= 2 * o.sample_time,
           "duration must be at least two samples, got " + std::to_string(o.duration));

@@ -30,7 +30,10 @@ struct ScenarioOptions {
   double position_noise = 0.0;                    // sensor noise std of x (m)
   double current_noise = 0.0;                     // sensor noise std of i1, i2 (A)
   double force_noise = 0.0;                       // process noise std of the force Fz (N)
-  double input_limit = 0.0;                       // |u| limit of the amplifiers (V); 0: none
+  // lamstf: noise std as a fraction of the noise-free loop's rms, per channel (seed 002's
+  // "% noise"; lamstf_scenario.hpp). Other families refuse a non-zero value.
+  double noise_level = 0.0;
+  double input_limit = 0.0;  // |u| limit of the amplifiers (V); 0: none
   // Families that run a rig's own loop (maglev1coil_voltage, maglev_loop.hpp): the board's
   // settings by name (maglev_rig.hpp; unset ones keep their defaults), the reference levels
   // (m, cycled; empty: the loop's default) and how long each is held (s).

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 
 namespace ambid::diag {
@@ -81,6 +82,9 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
   r.validation = {r.estimation.end, N};
+  const ControllerReplay clamps = clamped_samples(measured);  // not exogenous: no score counts them
+  r.clamped_samples = clamps.clamped_samples;
+  if (r.clamped_samples > 0) r.estimation.left_out = r.validation.left_out = clamps.clamped;
   r.t = measured.t;
   r.measured = measured.y_deviation();
   ReplayedLoop nominal;
@@ -109,7 +113,9 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   // A mode shows as a resonance in the position residual: try its three strongest peaks.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
   std::vector<Candidate> candidates;
+  std::size_t screened = 0;
   for (const auto& spec : sim::effect_catalogue()) {
+    if (options.progress) options.progress("screen the effect catalogue", screened++, sim::effect_catalogue().size());
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
       for (const auto& start : starts_of(spec, channel, harmonic_f, mode_f)) {
@@ -127,6 +133,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   // Each finding with its replay over the whole record (the accepted one's is the extended model's).
   std::vector<std::pair<AuditFinding, ReplayedLoop>> scored;
   for (int c = 0; c < fitted; ++c) {
+    if (options.progress) options.progress("fit the best candidates", std::size_t(c), std::size_t(fitted));
     if (!std::isfinite(candidates[std::size_t(c)].cost)) continue;
     const EffectFit fit = fit_effect(measured, r.measured, candidates[std::size_t(c)].start, r.estimation, options.fit);
     AuditFinding f;
@@ -255,6 +262,8 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
           {"frf_ratio", frf_ratio},
           {"residual_excitation_correlation", correlation},
           {"amplitude_dependence", amplitude},
+          {"clamped_samples",
+           {{"count", r.clamped_samples}, {"left_out_of", "every NRMSE (baseline, screening, fits, findings)"}}},
           {"acceptance",
            {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
             {"false_acceptance_probability", r.false_acceptance},

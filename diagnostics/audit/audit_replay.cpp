@@ -45,11 +45,16 @@ Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& mo
       measured.cols() != model.cols())
     throw Error("audit: NRMSE segment [" + std::to_string(segment.begin) + ", " + std::to_string(segment.end) +
                 ") does not fit the signals");
+  Eigen::VectorXd kept = Eigen::VectorXd::Ones(segment.size());  // 0 where a sample is left out
+  for (Eigen::Index k = segment.begin; k < std::min<Eigen::Index>(segment.end, std::ssize(segment.left_out)); ++k)
+    if (segment.left_out[std::size_t(k)]) kept(k - segment.begin) = 0.0;
+  if (kept.sum() < 2.0) throw InsufficientData("audit: fewer than two samples without a controller clamp to score");
   const Eigen::MatrixXd m = measured.middleRows(segment.begin, segment.size());
-  const Eigen::MatrixXd e = m - model.middleRows(segment.begin, segment.size());
+  const Eigen::MatrixXd e = (m - model.middleRows(segment.begin, segment.size())).array().colwise() * kept.array();
   Eigen::VectorXd out(m.cols());
   for (Eigen::Index j = 0; j < m.cols(); ++j) {
-    const double spread = (m.col(j).array() - m.col(j).mean()).matrix().norm();
+    const double mean = m.col(j).dot(kept) / kept.sum();
+    const double spread = ((m.col(j).array() - mean) * kept.array()).matrix().norm();
     if (!(spread > 0.0)) throw InsufficientData("audit: measured output " + std::to_string(j + 1) + " is constant");
     out[j] = e.col(j).norm() / spread;
   }

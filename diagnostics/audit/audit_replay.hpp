@@ -16,6 +16,9 @@ namespace ambid::diag {
 // Samples [begin, end) of a record.
 struct Segment {
   Eigen::Index begin = 0, end = 0;
+  // Per sample of the record: a controller clamp acted there (not exogenous), so the NRMSE
+  // scores leave it out. Empty: none.
+  std::vector<bool> left_out{};
   Eigen::Index size() const { return end - begin; }
 };
 
@@ -33,8 +36,9 @@ struct ReplayedLoop {
 };
 ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effect>& effects, Eigen::Index samples);
 
-// Per output j: ||y_meas - y_model|| / ||y_meas - mean(y_meas)|| over `segment`; both
-// matrices as deviations, at least `segment.end` rows. Error for a constant measured output.
+// Per output j: ||y_meas - y_model|| / ||y_meas - mean(y_meas)|| over the samples of
+// `segment` not left out; both matrices as deviations, at least `segment.end` rows. Error for a
+// constant measured output or fewer than two scored samples.
 Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment);
 
 // Checks what the audit needs of an experiment (Error naming what is missing).

@@ -63,15 +63,22 @@ Eigen::MatrixXd simulate_closed_loop(const DiscreteSystem& plant, const KnownCon
 }
 
 Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownController& k, const Eigen::MatrixXd& r,
-                                  const Eigen::MatrixXd& y, const Eigen::VectorXd& xc0) {
+                                  const Eigen::MatrixXd& y, const Eigen::VectorXd& xc0,
+                                  const std::vector<bool>& left_out) {
   const Index n = plant.states(), p = y.cols(), N = y.rows();
-  if (r.rows() != N || p != plant.outputs())
+  if (r.rows() != N || p != plant.outputs() || (!left_out.empty() && Index(left_out.size()) != N))
     throw Error("closed-loop validation: y has " + std::to_string(N) + " samples x " + std::to_string(p) +
                 " outputs, r " + std::to_string(r.rows()) + " samples, the model " + std::to_string(plant.outputs()) +
-                " outputs");
+                " outputs, the mask of left-out samples " + std::to_string(left_out.size()) + " entries");
+  Eigen::VectorXd kept = Eigen::VectorXd::Ones(N);  // 0 where a sample is left out
+  for (std::size_t i = 0; i < left_out.size(); ++i)
+    if (left_out[i]) kept(Index(i)) = 0.0;
+  if (kept.sum() < 2.0)
+    throw InsufficientData("closed-loop validation: fewer than two samples without a controller clamp to score");
   Eigen::VectorXd spread(p);
   for (Index j = 0; j < p; ++j) {
-    spread(j) = (y.col(j).array() - y.col(j).mean()).matrix().norm();
+    const double mean = y.col(j).dot(kept) / kept.sum();
+    spread(j) = ((y.col(j).array() - mean) * kept.array()).matrix().norm();
     if (!(spread(j) > 0.0))
       throw InsufficientData("closed-loop validation: output " + std::to_string(j + 1) +
                              " does not vary over the validation segment (nrmse undefined)");
@@ -87,10 +94,10 @@ Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownContro
     const Eigen::VectorXd unit = Eigen::VectorXd::Unit(n, i % n), zero = Eigen::VectorXd::Zero(n);
     const Eigen::MatrixXd yi = i < n ? simulate_closed_loop(plant, k, zero_r, unit, zero_xc)
                                      : simulate_closed_loop(plant, k, zero_r, zero, zero_xc, unit);
-    for (Index j = 0; j < p; ++j) free.block(j * N, i, N, 1) = yi.col(j) / spread(j);
+    for (Index j = 0; j < p; ++j) free.block(j * N, i, N, 1) = yi.col(j).cwiseProduct(kept) / spread(j);
   }
   Eigen::VectorXd residual(N * p);
-  for (Index j = 0; j < p; ++j) residual.segment(j * N, N) = (y.col(j) - forced.col(j)) / spread(j);
+  for (Index j = 0; j < p; ++j) residual.segment(j * N, N) = (y.col(j) - forced.col(j)).cwiseProduct(kept) / spread(j);
   Eigen::VectorXd nrmse(p);
   if (!forced.allFinite() || !free.allFinite()) {
     nrmse.setConstant(std::numeric_limits<double>::infinity());

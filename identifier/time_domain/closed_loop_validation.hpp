@@ -8,6 +8,8 @@
 // term of every state equation (2 n numbers against samples x outputs residuals: they remove
 // the start transient and the operating-point shift of a plant off nominal, which settles at
 // other bias currents and has no term in the linear model; not the model error).
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "core/state_space.hpp"
@@ -27,10 +29,13 @@ Eigen::MatrixXd simulate_closed_loop(const DiscreteSystem& plant, const KnownCon
                                      const Eigen::MatrixXd& r, const Eigen::VectorXd& x0, const Eigen::VectorXd& xc0,
                                      const Eigen::VectorXd& constant = {});
 
-// nrmse per output over the record, with x0 fitted as above. Throws Error for inconsistent
-// sizes or D != 0, InsufficientData for an output without variation (nrmse undefined);
-// returns non-finite entries when the controller does not stabilise the model.
+// nrmse per output over the record, with x0 fitted as above. Samples k with left_out[k]
+// (a controller clamp acted: not exogenous; empty: none) count neither in the fit of x0 nor
+// in the norms. Throws Error for inconsistent sizes or D != 0, InsufficientData for an output
+// without variation (nrmse undefined) or fewer than two samples scored; returns non-finite
+// entries when the controller does not stabilise the model.
 Eigen::VectorXd closed_loop_nrmse(const DiscreteSystem& plant, const KnownController& controller,
-                                  const Eigen::MatrixXd& r, const Eigen::MatrixXd& y, const Eigen::VectorXd& xc0);
+                                  const Eigen::MatrixXd& r, const Eigen::MatrixXd& y, const Eigen::VectorXd& xc0,
+                                  const std::vector<bool>& left_out = {});
 
 }  // namespace ambid::ident

@@ -12,6 +12,7 @@
 #include "diagnostics/audit.hpp"
 #include "services/cli/audit_report.hpp"
 #include "services/cli/commands.hpp"
+#include "services/cli/progress.hpp"
 #include "services/report/output_lock.hpp"
 
 namespace ambid::cli {
@@ -21,6 +22,7 @@ struct AuditArguments {
   std::string experiment;
   std::string out;
   diag::AuditOptions options;
+  bool quiet = false;  // no progress line on stderr
 };
 
 }  // namespace
@@ -43,11 +45,20 @@ void add_audit_command(CLI::App& app) {
       ->add_option("--fitted-candidates", args->options.fitted_candidates,
                    "how many of the screened candidates are fitted")
       ->capture_default_str();
+  audit->add_flag("--quiet", args->quiet, "no progress line on stderr (there is none when stderr is no terminal)");
   audit->callback([args] {
     const report::OutputLock lock(args->out);
+    Progress progress("ambid audit", args->quiet);
+    progress.update("read " + args->experiment, 0, 1);
     const ReadResult read = read_experiment(args->experiment);
+    progress.clear();
     for (const auto& w : read.warnings) std::cerr << "ambid audit: warning: " << w << "\n";
-    const diag::AuditResult result = diag::run_audit(read.experiment, args->options);
+    diag::AuditOptions options = args->options;
+    options.progress = [&progress](const std::string& stage, std::size_t done, std::size_t total) {
+      progress.update(stage, done, total);
+    };
+    const diag::AuditResult result = diag::run_audit(read.experiment, options);
+    progress.clear();
     const std::filesystem::path dir(args->out);
     const std::string experiment_file = std::filesystem::path(args->experiment).filename().string();
     // All three rendered before any is written: a failure leaves the previous outputs, no new one.
@@ -61,6 +72,10 @@ void add_audit_command(CLI::App& app) {
       std::cout << "  " << f.effect.name << (f.effect.channel ? " channel " + std::to_string(f.effect.channel) : "")
                 << ": NRMSE " << f.nrmse_total_before << " -> " << f.nrmse_total_after
                 << (f.accepted ? "  (cause)" : "") << "\n";
+    if (result.clamped_samples > 0)
+      std::cout << "  " << result.clamped_samples
+                << " samples with a controller clamp acting (not exogenous): left out "
+                << "of every NRMSE\n";
     std::cout << "  wrote " << (dir / "audit.json").string() << ", model-extended.json and report.html\n";
   });
 }

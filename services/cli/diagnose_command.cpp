@@ -234,9 +234,10 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
     s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s)"
       << (in.skipped.empty() ? std::string() : ", " + std::to_string(in.skipped.size()) + " skipped")
       << ", to t = " << number(in.time_to) << " s"
-      << (in.clamped_samples ? ", " + std::to_string(in.clamped_samples) +
-                                   " samples with a controller clamp acting (not exogenous; still in the window fits)"
-                             : std::string())
+      << (in.clamped_samples
+              ? ", " + std::to_string(in.clamped_samples) +
+                    " samples with a controller clamp acting (not exogenous; left out of the window fits and scores)"
+              : std::string())
       << "\n";
   if (const std::size_t n = skipped_total(inputs); n > 0) {
     s << "\n  " << n << " window(s) skipped, not identified:";

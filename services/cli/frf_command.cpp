@@ -12,6 +12,7 @@
 #include "identifier/frf_analysis.hpp"
 #include "services/cli/commands.hpp"
 #include "services/cli/frf_output.hpp"
+#include "services/cli/progress.hpp"
 #include "services/report/atomic_file.hpp"
 #include "services/report/format.hpp"
 #include "services/report/output_lock.hpp"
@@ -24,6 +25,7 @@ struct FrfArguments {
   std::string out;
   ident::FrfAnalysisOptions options;
   bool no_fit = false;
+  bool quiet = false;  // no progress line on stderr
 };
 
 using report::format_number;
@@ -110,14 +112,19 @@ void add_frf_command(CLI::App& app) {
                   "periodic r: whole periods discarded at the start, -1: one when enough remain")
       ->capture_default_str();
   frf->add_flag("--no-fit", args->no_fit, "skip the rational fits");
+  frf->add_flag("--quiet", args->quiet, "no progress line on stderr (there is none when stderr is no terminal)");
   frf->callback([args] {
     const report::OutputLock lock(args->out);
+    Progress progress("ambid frf", args->quiet);
+    progress.update("read " + args->experiment, 0, 4);
     ReadResult read = read_experiment(args->experiment);
+    progress.clear();
     for (const std::string& w : read.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
     const Experiment& e = read.experiment;
     require_loop_data(e, args->experiment);
     args->options.fit = !args->no_fit;
     ident::FrfReport r;
+    progress.update(args->no_fit ? "FRF estimate" : "FRF estimate and rational fits", 1, 4);
     try {
       r = ident::analyse_frf(e, args->options);
     } catch (const InsufficientData& error) {  // say which file cannot support an FRF
@@ -126,8 +133,11 @@ void add_frf_command(CLI::App& app) {
     // frf.json is rendered before the plots are written and written after them: a failure
     // leaves no new frf.json beside the plots.
     const std::string values = frf_json(r, e, args->experiment, args->options).dump(1) + "\n";
+    progress.update("plots", 2, 4);
     const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
+    progress.update("write frf.json", 3, 4);
     report::write_file_atomically(std::filesystem::path(args->out) / "frf.json", values);
+    progress.clear();
     for (const std::string& w : r.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
     print_summary(r, args->experiment, args->out, plots.size(), fit_band_top_hz(e, args->options));
   });

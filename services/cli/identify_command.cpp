@@ -66,7 +66,11 @@ void add_identify_command(CLI::App& app) {
     write_model(model, args->out);
     print_summary(model, args->out);
     std::cout << "  clamped samples (a controller clamp acted, not exogenous): " << read.clamped_samples << " of "
-              << read.experiment.samples() << (read.clamped_samples ? "; the fit still uses them" : "") << "\n";
+              << read.experiment.samples()
+              << (read.clamped_samples
+                      ? "; left out of the fit and of the validation nrmse (model.json clamped_samples)"
+                      : "")
+              << "\n";
   });
 }
 

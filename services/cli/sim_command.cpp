@@ -106,6 +106,7 @@ void apply_family_defaults(const CLI::App& sim, sim::ScenarioOptions& o) {
   if (!sim.count("--controller")) o.controller = d.controller;
   if (!sim.count("--excitation")) o.excitation = d.excitation;
   if (!sim.count("--amplitude")) o.amplitude = d.amplitude;
+  if (!sim.count("--noise-level")) o.noise_level = d.noise_level;
 }
 
 }  // namespace
@@ -118,12 +119,14 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--duration", o.duration, "record length (s)")->capture_default_str();
   sim->add_option("--sample-time", o.sample_time, "sample time (s)")->capture_default_str();
   sim->add_option("--seed", o.seed, "seed of excitation and noise")->capture_default_str();
-  sim->add_option(
-         "--controller", o.controller,
-         "controller design: lqr (observer, integral action) | pid | leadlag (both decentralised with current loops)")
+  sim->add_option("--controller", o.controller,
+                  "controller design: lqr (observer, integral action) | pid | leadlag (both decentralised with "
+                  "current loops); lamstf: lqr")
       ->capture_default_str();
-  sim->add_option("--excitation", o.excitation,
-                  "prbs | multisine | chirp | stepped_sine | none; maglev1coil_voltage: uniform | none")
+  sim->add_option(
+         "--excitation", o.excitation,
+         "prbs | multisine | chirp | stepped_sine | none; maglev1coil_voltage: uniform | none; lamstf: gaussian | "
+         "binary | none")
       ->capture_default_str();
   sim->add_option("--amplitude", o.amplitude, "excitation level per plant input (V; rms for multisine)")
       ->capture_default_str();
@@ -132,7 +135,11 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--position-noise", o.position_noise, "sensor noise std of x (m)")->capture_default_str();
   sim->add_option("--current-noise", o.current_noise, "sensor noise std of i1, i2 (A)")->capture_default_str();
   sim->add_option("--force-noise", o.force_noise, "process noise std of the rotor force (N)")->capture_default_str();
-  sim->add_option("--input-limit", o.input_limit, "amplifier command limit |u| (V), 0 for none")->capture_default_str();
+  sim->add_option("--noise-level", o.noise_level,
+                  "lamstf: noise std per channel as a fraction of the noise-free loop's rms (seed 002's % noise; "
+                  "default 0.005)");
+  sim->add_option("--input-limit", o.input_limit, "amplifier command limit |u| (V; lamstf: A), 0 for none")
+      ->capture_default_str();
   sim->add_option("--set", args->overrides,
                   "NAME=VALUE: a true plant parameter or an effect parameter (repeatable; EFFECT.NAME=VALUE when "
                   "two effects share a name); the sidecar keeps the nominal value");

@@ -31,6 +31,18 @@ TEST(AuditMetrics, NrmseIsTheContractDefinition) {
   EXPECT_THROW(nrmse(Eigen::MatrixXd::Ones(4, 1), model, {0, 4}), InsufficientData);
 }
 
+// A sample where a controller clamp acted counts neither in the error nor in the spread.
+TEST(AuditMetrics, NrmseLeavesOutTheClampedSamples) {
+  Eigen::MatrixXd measured(6, 1), model(6, 1);
+  measured << 1, 2, 50, 3, 6, -40;
+  model << 1, 2, 0, 4, 6, 7;
+  Segment segment{0, 6};
+  segment.left_out = {false, false, true, false, false, true};
+  EXPECT_DOUBLE_EQ(nrmse(measured, model, segment)[0], 1.0 / std::sqrt(14.0));  // the case above
+  segment.left_out = {true, true, true, true, true, false};
+  EXPECT_THROW(nrmse(measured, model, segment), InsufficientData);
+}
+
 TEST(AuditMetrics, WelchSpectrumOfASineHasItsLineAndPower) {
   const double dt = 1e-3, f = 125.0, amplitude = 2.0;  // f on a bin of the 512-sample window
   Eigen::VectorXd s(8192);

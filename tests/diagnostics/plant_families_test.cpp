@@ -28,8 +28,10 @@ TEST(DiagnosticsFamilies, MissingPiecesAndUnknownFamiliesAreNamed) {
             "audit: plant model 'maglev1coil_voltage' has no effect catalogue yet");
   EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::fault_signatures),
             "audit: plant model 'maglev1coil_voltage' has no fault signatures (nor monitored parameters) yet");
-  EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::fault_signatures),
-            "audit: unknown plant 'lamstf' (known: amb1dof_voltage, maglev1coil_voltage)");
+  EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::effect_catalogue),
+            "audit: plant model 'lamstf' has no effect catalogue yet");
+  EXPECT_EQ(error_of("lamstf5", DiagnosticsPiece::fault_signatures),
+            "audit: unknown plant 'lamstf5' (known: amb1dof_voltage, maglev1coil_voltage, lamstf)");
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ TEST(MaglevIdentify, FamilyBoundMethodsNameTheFamiliesThatOfferThem) {
   e.plant.model = "maglev2coil";
   EXPECT_EQ(error_of(e, "greybox"),
             "identify: method 'greybox' is defined for plant model 'maglev1coil_voltage' only, got 'maglev2coil' "
-            "(known plant models: amb1dof_voltage, maglev1coil_voltage)");
+            "(known plant models: amb1dof_voltage, maglev1coil_voltage, lamstf)");
 }
 
 }  // namespace

@@ -68,7 +68,9 @@ TEST(AuditCli, NamesTheHiddenEffectAndWritesItsFiles) {
   const CommandResult r = run_ambid("audit " + (dir / "run.json").string() + " --out " + (dir / "audit").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("misses sensor_gain"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("ambid audit: screen")));  // no progress: stderr is a pipe
   const nlohmann::json a = read_json(dir / "audit" / "audit.json");
+  EXPECT_EQ(a["clamped_samples"]["count"], 0);
   EXPECT_EQ(a["format"], "ambid-audit/1");
   EXPECT_EQ(a["experiment"], "run.json");
   EXPECT_EQ(a["cause"], "sensor_gain");

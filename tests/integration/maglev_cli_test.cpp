@@ -62,7 +62,7 @@ TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {
   EXPECT_THAT(r.output, HasSubstr("the body touched the ground at t = "));
   r = run_ambid("sim --plant maglev2coil --out " + (dir / "x").string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("unknown plant 'maglev2coil' (known: amb1dof_voltage, maglev1coil_voltage)"));
+  EXPECT_THAT(r.output, HasSubstr("unknown plant 'maglev2coil' (known: amb1dof_voltage, maglev1coil_voltage, lamstf)"));
   r = run_ambid("sim --plant amb1dof_voltage --rig Kp=2 --duration 0.01 --out " + (dir / "y").string());
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.output, HasSubstr("--rig and --levels are settings of a rig's own loop"));

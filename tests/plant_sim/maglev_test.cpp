@@ -155,7 +155,8 @@ TEST(PlantFamilies, UnknownFamilyIsRefusedWithTheKnownOnes) {
     plant_family("maglev2coil", "sim");
     FAIL();
   } catch (const Error& error) {
-    EXPECT_STREQ(error.what(), "sim: unknown plant 'maglev2coil' (known: amb1dof_voltage, maglev1coil_voltage)");
+    EXPECT_STREQ(error.what(),
+                 "sim: unknown plant 'maglev2coil' (known: amb1dof_voltage, maglev1coil_voltage, lamstf)");
   }
   ScenarioOptions o;
   o.plant = "maglev1coil_voltage";
