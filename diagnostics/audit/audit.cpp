@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "diagnostics/audit/audit_mode_search.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -31,25 +32,23 @@ Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measu
   return best;
 }
 
-// Starting values of every candidate: switching parameters at +-1 and +-0.3 times their scale
-// (within range),
-// frequencies from the residual's strongest line (harmonic) or peaks (flexible mode).
-std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f,
-                                   const std::vector<double>& mode_f) {
+// Starting values of every candidate but the flexible mode (audit_mode_search.hpp):
+// switching parameters at +-1 and +-0.3 times their scale (within range), the frequency of a
+// harmonic from the residual's strongest line.
+std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f) {
   std::vector<sim::Effect> starts;
-  for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
-    for (const auto& p : spec.parameters) {
-      std::map<std::string, double> shape;
-      if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
-      if (channel) shape["channel"] = channel;
-      if (!p.switches) continue;
-      for (double size : {1.0, -1.0, 0.3, -0.3}) {
-        if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
-        auto values = shape;
-        values[p.name] = size * p.scale;
-        starts.push_back(sim::make_effect(spec.name, values));
-      }
+  for (const auto& p : spec.parameters) {
+    std::map<std::string, double> shape;
+    if (spec.name == "harmonic_disturbance") shape["f"] = harmonic_f;
+    if (channel) shape["channel"] = channel;
+    if (!p.switches) continue;
+    for (double size : {1.0, -1.0, 0.3, -0.3}) {
+      if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
+      auto values = shape;
+      values[p.name] = size * p.scale;
+      starts.push_back(sim::make_effect(spec.name, values));
     }
+  }
   return starts;
 }
 
@@ -106,13 +105,17 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
   const double nyquist = 0.5 / dt;
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
-  // A mode shows as a resonance in the position residual: try its three strongest peaks.
+  // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
   std::vector<Candidate> candidates;
   for (const auto& spec : sim::effect_catalogue()) {
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
-      for (const auto& start : starts_of(spec, channel, harmonic_f, mode_f)) {
+      if (spec.name == "flexible_mode") {
+        const ModeStart mode = search_mode_start(measured, r.measured, r.nominal, r.estimation, mode_f);
+        best = {mode.effect, mode.cost};
+      }
+      for (const auto& start : starts_of(spec, channel, harmonic_f)) {
         const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
         if (c < best.cost || best.start.name.empty()) best = {start, c};
       }
