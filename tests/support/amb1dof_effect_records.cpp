@@ -78,8 +78,8 @@ struct Truth {
     }
     const std::array<double, 2> gap{x0 - x, x0 + x}, gap_rate{-v, v}, pull{1.0, -1.0};
     State d{};
-    double force = force_noise + harmonic_c * std::cos(kTwoPi * harmonic_f * t) +
-                   harmonic_s * std::sin(kTwoPi * harmonic_f * t);
+    double force =
+        force_noise + harmonic_c * std::cos(kTwoPi * harmonic_f * t) + harmonic_s * std::sin(kTwoPi * harmonic_f * t);
     for (int j = 0; j < 2; ++j) {
       const auto J = std::size_t(j);
       const double i = s[2 + J], g = gap[J];
@@ -187,9 +187,8 @@ sim::Scenario header_of(const EffectRecordOptions& o) {
   sim::Scenario scenario = sim::build_scenario(s);
   if (o.controller == "observer") {
     const sim::Amb1dofVoltage nominal(sim::Amb1dofParameters::nominal());
-    scenario.header.controller =
-        sim::design_observer_controller(nominal.linearize(), o.sample_time, scenario.header.u_names,
-                                        scenario.header.y_names, other_observer_options());
+    scenario.header.controller = sim::design_observer_controller(
+        nominal.linearize(), o.sample_time, scenario.header.u_names, scenario.header.y_names, other_observer_options());
   } else if (o.controller == "leadlag") {
     scenario.header.controller = lead_lag(o.sample_time);
   }
@@ -213,7 +212,8 @@ nlohmann::json description(const EffectRecordOptions& o) {
            {{"inductance", {{"channel", x.inductance_channel}, {"relative_error", x.inductance_error}}},
             {"sensor_offset", x.sensor_offset},
             {"modes", modes},
-            {"gain_drift", {{"channel", x.gain_drift_channel}, {"amplitude", x.gain_drift}, {"period", x.gain_drift_period}}}}},
+            {"gain_drift",
+             {{"channel", x.gain_drift_channel}, {"amplitude", x.gain_drift}, {"period", x.gain_drift_period}}}}},
           {"noise",
            {{"x", o.position_noise},
             {"i1", o.current_noise},
@@ -251,8 +251,7 @@ const std::vector<std::string>& effect_record_controllers() {
 }
 
 Experiment simulate_effect_record(const EffectRecordOptions& o) {
-  if (!(o.coloured_fraction >= 0.0 && o.coloured_fraction <= 1.0) || !(o.noise_time_constant > 0.0) ||
-      o.substeps < 1)
+  if (!(o.coloured_fraction >= 0.0 && o.coloured_fraction <= 1.0) || !(o.noise_time_constant > 0.0) || o.substeps < 1)
     throw Error("effect records: coloured_fraction in [0, 1], a positive noise time constant, substeps >= 1");
   const Truth truth = make_truth(o);
   sim::Scenario scenario = header_of(o);
@@ -308,8 +307,8 @@ Experiment simulate_effect_record(const EffectRecordOptions& o) {
   e.r.resize(N, 2);
   for (Eigen::Index k = 0; k < N; ++k) {
     const double t = double(k) * dt;
-    const Eigen::Vector3d y(truth.gain * delayed(t) + truth.offset + x_noise.next(rng),
-                            s[2] + i1_noise.next(rng), s[3] + i2_noise.next(rng));
+    const Eigen::Vector3d y(truth.gain * delayed(t) + truth.offset + x_noise.next(rng), s[2] + i1_noise.next(rng),
+                            s[3] + i2_noise.next(rng));
     for (std::size_t j = 0; j < ctrl.inputs.size(); ++j) {
       const std::string& name = ctrl.inputs[j];
       if (const auto i = index_in(e.y_names, name); i < std::ssize(e.y_names))

@@ -53,12 +53,12 @@ struct EffectRecordOptions {
   std::string controller = "lqr";
   std::vector<sim::Effect> effects;  // catalogue effects, force_factor, saturation by i_sat
   OutOfCatalogue out_of_catalogue;
-  double amplitude = 0.3;         // PRBS on each input (V)
-  double duration = 0.6;          // s
-  double sample_time = 1e-4;      // s
-  double position_noise = 1e-7;   // m rms (white and coloured together)
-  double current_noise = 1e-3;    // A rms on each current
-  double coloured_fraction = 0.3;  // share of the noise variance that is first-order coloured
+  double amplitude = 0.3;             // PRBS on each input (V)
+  double duration = 0.6;              // s
+  double sample_time = 1e-4;          // s
+  double position_noise = 1e-7;       // m rms (white and coloured together)
+  double current_noise = 1e-3;        // A rms on each current
+  double coloured_fraction = 0.3;     // share of the noise variance that is first-order coloured
   double noise_time_constant = 5e-4;  // s, of the coloured part
   double force_noise = 0.02;          // N rms, white, held over a sample
   int substeps = 50;                  // RK4 steps per sample (more when a lag needs them)
