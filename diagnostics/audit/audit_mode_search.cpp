@@ -88,15 +88,16 @@ ModeStart search_mode_start(const Experiment& measured, const Eigen::MatrixXd& m
   };
   const double coupling = spec_of("coupling").scale, zeta = spec_of("zeta").neutral;
   const double highest = kHighestShare * 0.5 / measured.sample_time;
-  const double matched = matched_mode_frequency(measured_y.col(0) - nominal_y.col(0), nominal_y.col(0),
-                                                measured.sample_time, estimation);
+  const double matched =
+      matched_mode_frequency(measured_y.col(0) - nominal_y.col(0), nominal_y.col(0), measured.sample_time, estimation);
   std::vector<double> frequencies = peaks;
   for (double f = matched / kReplaySpan; f <= matched * kReplaySpan; f *= kGridStep) frequencies.push_back(f);
   ModeStart best{{}, INFINITY};
   for (double f : frequencies)
     for (double sign : {1.0, -1.0}) {
       if (!(f >= kLowest && f <= highest)) continue;
-      const sim::Effect e = sim::make_effect("flexible_mode", {{"coupling", sign * coupling}, {"f", f}, {"zeta", zeta}});
+      const sim::Effect e =
+          sim::make_effect("flexible_mode", {{"coupling", sign * coupling}, {"f", f}, {"zeta", zeta}});
       const double cost = estimation_cost(measured, measured_y, {e}, estimation);
       if (cost < best.cost || best.effect.name.empty()) best = {e, cost};
     }
