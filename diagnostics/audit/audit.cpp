@@ -146,11 +146,11 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
     f.test = improvement_test(r.measured, r.nominal, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
-    f.score = f.nrmse_total_after * (1.0 + options.complexity_penalty * double(fit.effect.parameters.size()));
+    f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
     scored.emplace_back(std::move(f), std::move(loop));
   }
   std::stable_sort(scored.begin(), scored.end(),
-                   [](const auto& a, const auto& b) { return a.first.score < b.first.score; });
+                   [](const auto& a, const auto& b) { return a.first.score > b.first.score; });
   for (auto& [finding, loop] : scored) r.findings.push_back(finding);
   r.false_acceptance = options.false_acceptance;
   r.z_threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(r.findings.size())));
