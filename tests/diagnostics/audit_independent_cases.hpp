@@ -1,0 +1,29 @@
+#pragma once
+// Audit cases on independent truths (tests/support/amb1dof_effect_records.hpp): realistic
+// records (PRBS 1.5 V, 1 s, sensor noise 0.1 um on x and 1 mA on the currents, 30 % of its
+// variance coloured, process force 0.02 N) with an effect drawn at a multiple of its
+// catalogue scale.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "plant_sim/effects.hpp"
+#include "support/amb1dof_effect_records.hpp"
+
+namespace ambid::diag::testing {
+
+test_support::EffectRecordOptions realistic_record(const std::string& controller, std::uint64_t seed);
+
+// The catalogue's effects, plus force_factor once the catalogue has it.
+std::vector<std::string> independent_effect_names();
+
+// `name` with its switching parameter at `multiple` times its catalogue scale (clamped to its
+// range), the sign and the channel drawn; a flexible mode at 300-1500 Hz with zeta
+// 0.01-0.02, a harmonic at 20-400 Hz with a drawn phase. force_factor: ratio 1 - 0.1 multiple
+// (drawn sign: 1 +- 0.1 multiple).
+sim::Effect effect_at(const std::string& name, double multiple, std::uint64_t seed);
+
+// The size of an effect relative to its catalogue scale (|switching parameter| / scale).
+double relative_size(const sim::Effect& effect);
+
+}  // namespace ambid::diag::testing

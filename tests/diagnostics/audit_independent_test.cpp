@@ -1,0 +1,151 @@
+// The audit on records it did not generate (tests/support/amb1dof_effect_records.hpp: the
+// plant and effects written again, RK4 with 50 sub-steps, four controllers, coloured sensor
+// noise of 0.1 um / 1 mA, a process force): every effect at a moderate size, drawn, is named
+// with its channel (or, for the pairs the audit cannot tell apart at this noise, listed in
+// confused_groups(), its partner: never an unrelated cause); clean records from every
+// controller give "none".
+// audit_independent_slow_test.cpp: false acceptance over 100 clean records, detection
+// probability against size.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "audit_independent_cases.hpp"
+#include "diagnostics/audit.hpp"
+
+namespace ambid::diag {
+namespace {
+
+// Moderate sizes in multiples of the catalogue scale: where a record of 1 s at 1.5 V shows
+// the effect above the noise (0.1 um / 1 mA fed around the loop makes the nominal NRMSE
+// 0.5-0.9 by itself).
+const std::map<std::string, std::pair<double, double>>& moderate_multiples() {
+  static const std::map<std::string, std::pair<double, double>> m = {
+      {"coil_resistance", {1.0, 2.0}},     {"amplifier_gain", {1.0, 2.0}}, {"amplifier_bandwidth", {1.5, 2.0}},
+      {"eddy_current", {0.75, 1.0}},        {"sensor_delay", {3.0, 4.0}},  {"sensor_gain", {1.0, 1.5}},
+      {"flexible_mode", {3.0, 3.5}},       {"magnetic_saturation", {1.2, 2.0}}, {"air_gap", {2.0, 3.0}},
+      {"rotor_mass", {3.0, 4.0}},          {"harmonic_disturbance", {1.0, 2.0}}, {"force_factor", {1.0, 2.0}}};
+  return m;
+}
+
+// Controllers a case does not use, and why (measured on these records): a flexible mode at
+// 450 Hz with coupling 0.3 makes the observer loop unstable (spillover), eddy currents of
+// 1-2e-4 s the lead-lag loop.
+bool excluded(const std::string& effect, const std::string& controller) {
+  return (effect == "flexible_mode" && controller == "observer") ||
+         (effect == "eddy_current" && controller == "leadlag");
+}
+
+// Effects the audit does not tell apart at 0.1 um / 1 mA on these records (known weaknesses,
+// issue 17; measured z of the truth's finding against the other's):
+// - the two lags (force behind current, measurement behind position): their fits differ by a
+//   cost of ~0.002 (NRMSE^2) at 1.5-2e-4 s, and a larger lag makes every loop unstable;
+// - coil resistance and amplifier gain: both move the steady kw/R and with it every current,
+//   which dominates the residual; the electrical pole that tells them apart sits at 6.5 Hz
+//   (dkw 0.33 under PID named coil_resistance at z 713);
+// - a heavier rotor and saturation: saturation's mechanical part is a mass change (dm 0.67
+//   kg under the observer loop named magnetic_saturation at z 5.8).
+// For these the test asks for one of the group on the right channel, never another cause.
+const std::vector<std::vector<std::string>>& confused_groups() {
+  static const std::vector<std::vector<std::string>> groups = {
+      {"eddy_current", "sensor_delay"},
+      {"coil_resistance", "amplifier_gain"},
+      {"rotor_mass", "magnetic_saturation"}};
+  return groups;
+}
+
+std::vector<std::string> accepted_causes(const std::string& name) {
+  for (const auto& group : confused_groups())
+    if (std::find(group.begin(), group.end(), name) != group.end()) return group;
+  return {name};
+}
+
+bool in_catalogue(const std::string& name) {
+  const auto names = sim::effect_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+class IndependentTruth : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(IndependentTruth, AuditNamesTheEffectAndItsChannel) {
+  const std::string name = GetParam();
+  if (!in_catalogue(name)) GTEST_SKIP() << name << " is not in the catalogue yet";
+  const auto names = testing::independent_effect_names();
+  const auto index = std::uint64_t(std::find(names.begin(), names.end(), name) - names.begin());
+  std::vector<std::string> controllers;
+  for (const auto& c : test_support::effect_record_controllers())
+    if (!excluded(name, c)) controllers.push_back(c);
+  for (std::uint64_t draw = 0; draw < 2; ++draw) {
+    const std::uint64_t seed = 4100 + 17 * index + draw;
+    std::mt19937_64 rng(seed);
+    const auto [lo, hi] = moderate_multiples().at(name);
+    const double multiple = std::uniform_real_distribution<double>(lo, hi)(rng);
+    sim::Effect truth = testing::effect_at(name, multiple, seed);
+    test_support::EffectRecordOptions o =
+        testing::realistic_record(controllers[(index + draw) % controllers.size()], seed);
+    if (name == "flexible_mode") {  // a mode needs more data: 2 s at 2 V, 600-800 Hz
+      truth.parameters["f"] = std::uniform_real_distribution<double>(600.0, 800.0)(rng);
+      o.amplitude = 2.0;
+      o.duration = 2.0;
+    }
+    // The two lags (force behind current, measurement behind position) differ by a cost of
+    // ~0.002 (NRMSE^2) at 1.5-2e-4 s, where a larger lag makes every loop unstable: 2 s.
+    if (name == "eddy_current" || name == "sensor_delay") o.duration = 2.0;
+    o.effects = {truth};
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    ASSERT_FALSE(r.findings.empty());
+    const AuditFinding& best = r.findings.front();
+    std::string hidden = o.controller + ", hidden";
+    for (const auto& [key, value] : truth.parameters) hidden += " " + key + "=" + std::to_string(value);
+    if (name == "flexible_mode") {  // found 4 of 6 times at this size: never another cause
+      EXPECT_TRUE(r.cause == name || r.cause == "none") << hidden << ": found " << best.effect.name << ": "
+                                                        << best.evidence;
+      continue;
+    }
+    const auto accepted = accepted_causes(name);
+    EXPECT_TRUE(std::find(accepted.begin(), accepted.end(), r.cause) != accepted.end())
+        << hidden << ": found " << best.effect.name << ": " << best.evidence;
+    EXPECT_EQ(best.effect.channel, truth.channel) << hidden;
+    if (r.cause == name) {  // the fitted size within 35 % of the truth's (an independent plant)
+      EXPECT_NEAR(testing::relative_size(best.effect), testing::relative_size(truth),
+                  0.35 * testing::relative_size(truth))
+          << hidden << ": " << best.evidence;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, IndependentTruth, ::testing::ValuesIn(testing::independent_effect_names()),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+// Saturation by another curve (phi = a_s tanh(a / a_s), i_sat 1.2 A) than the catalogue's is
+// still magnetic_saturation, not a sensor gain: the misses of the first independent suite.
+TEST(IndependentTruth, SaturationOfAnotherCurveIsNotASensorGain) {
+  for (const std::string controller : {"lqr", "pid"}) {
+    test_support::EffectRecordOptions o = testing::realistic_record(controller, 4300);
+    o.effects = {sim::Effect{"magnetic_saturation", 0, {{"i_sat", 1.2}}}};
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    EXPECT_EQ(r.cause, "magnetic_saturation") << controller << ": " << r.findings.front().evidence;
+  }
+}
+
+TEST(IndependentTruth, CleanRecordsFromEveryControllerHaveNoCause) {
+  const auto& controllers = test_support::effect_record_controllers();
+  int named = 0;
+  for (std::uint64_t s = 0; s < 12; ++s) {
+    const std::string& controller = controllers[s % controllers.size()];
+    const AuditResult r = run_audit(test_support::simulate_effect_record(testing::realistic_record(controller, 4500 + s)));
+    ASSERT_FALSE(r.findings.empty());
+    if (r.cause != "none") ++named;
+    EXPECT_EQ(r.cause, "none") << controller << " seed " << 4500 + s << ": " << r.findings.front().evidence;
+    EXPECT_GT(r.findings.front().nrmse_total_after, 0.95 * r.baseline_total) << controller;
+  }
+  EXPECT_EQ(named, 0);
+}
+
+}  // namespace
+}  // namespace ambid::diag
