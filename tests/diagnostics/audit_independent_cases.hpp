@@ -26,4 +26,16 @@ sim::Effect effect_at(const std::string& name, double multiple, std::uint64_t se
 // The size of an effect relative to its catalogue scale (|switching parameter| / scale).
 double relative_size(const sim::Effect& effect);
 
+// Effects the audit does not tell apart at 0.1 um / 1 mA on these records (known weaknesses,
+// issue 17; measured z of the truth's finding against the other's):
+// - the two lags (force behind current, measurement behind position): their fits differ by a
+//   cost of ~0.002 (NRMSE^2) at 1.5-2e-4 s, and a larger lag makes every loop unstable;
+// - coil resistance and amplifier gain: both move the steady kw/R and with it every current,
+//   which dominates the residual; the electrical pole that tells them apart sits at 6.5 Hz
+//   (dkw 0.33 under PID named coil_resistance at z 713);
+// - a heavier rotor and saturation: saturation's mechanical part is a mass change (dm 0.67
+//   kg under the observer loop named magnetic_saturation at z 5.8).
+// The causes accepted for `name`: its group, or itself.
+std::vector<std::string> accepted_causes(const std::string& name);
+
 }  // namespace ambid::diag::testing
