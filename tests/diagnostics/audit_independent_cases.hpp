@@ -33,8 +33,10 @@ double relative_size(const sim::Effect& effect);
 // - coil resistance and amplifier gain: both move the steady kw/R and with it every current,
 //   which dominates the residual; the electrical pole that tells them apart sits at 6.5 Hz
 //   (dkw 0.33 under PID named coil_resistance at z 713);
-// - a heavier rotor and saturation: saturation's mechanical part is a mass change (dm 0.67
-//   kg under the observer loop named magnetic_saturation at z 5.8).
+// - a heavier rotor, saturation and the air gap: each rescales the force factor and the
+//   negative stiffness (saturation's mechanical part is a mass change), the electrical
+//   differences are below the 1 mA noise (dm 0.67 kg named magnetic_saturation at z 5.8 under
+//   the observer loop, air_gap at z 7.2 under PID).
 // The causes accepted for `name`: its group, or itself.
 std::vector<std::string> accepted_causes(const std::string& name);
 

@@ -62,8 +62,9 @@ double relative_size(const sim::Effect& effect) {
 }
 
 std::vector<std::string> accepted_causes(const std::string& name) {
-  static const std::vector<std::vector<std::string>> groups = {
-      {"eddy_current", "sensor_delay"}, {"coil_resistance", "amplifier_gain"}, {"rotor_mass", "magnetic_saturation"}};
+  static const std::vector<std::vector<std::string>> groups = {{"eddy_current", "sensor_delay"},
+                                                               {"coil_resistance", "amplifier_gain"},
+                                                               {"rotor_mass", "magnetic_saturation", "air_gap"}};
   for (const auto& group : groups)
     if (std::find(group.begin(), group.end(), name) != group.end()) return group;
   return {name};
