@@ -143,6 +143,30 @@ TEST(IndependentTruth, NoiseFreeRecordsAgreeWithTheAuditsReplay) {
   }
 }
 
+// Mismatches outside the catalogue are not forced onto it: the nominal model is rejected but
+// the cause is "unexplained" (experiment-format.md), never a catalogue effect. Needs the
+// residual check of branch audit-accept, which brings force_factor into the catalogue with it.
+TEST(IndependentTruth, OutOfCatalogueMismatchesAreUnexplained) {
+  if (!in_catalogue("force_factor")) GTEST_SKIP() << "needs audit-accept's \"unexplained\" (not merged yet)";
+  const auto& controllers = test_support::effect_record_controllers();
+  for (int c = 0; c < 4; ++c) {
+    test_support::EffectRecordOptions o =
+        testing::realistic_record(controllers[std::size_t(c)], 4700 + std::uint64_t(c));
+    test_support::OutOfCatalogue& x = o.out_of_catalogue;
+    const char* what = "";
+    if (c == 0) x.inductance_error = 0.05, x.inductance_channel = 2, what = "Ls2 +5 %";
+    if (c == 1) x.sensor_offset = 5e-6, what = "sensor offset 5 um";
+    if (c == 2) x.modes = {{0.3, 650.0, 0.015}, {0.3, 1500.0, 0.01}}, what = "two flexible modes";
+    if (c == 3) x.gain_drift = 0.1, x.gain_drift_period = 0.5, what = "amplifier 1 gain +-10 % at 2 Hz";
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    ASSERT_FALSE(r.findings.empty());
+    // Two modes: the catalogue's one mode is a fair first cause (before the merge: named at
+    // z 4.1 under PID; the offset gave none at a nominal NRMSE of 1.74, Ls2 and the drift none).
+    const bool fair = r.cause == "unexplained" || r.cause == "none" || (c == 2 && r.cause == "flexible_mode");
+    EXPECT_TRUE(fair) << what << " (" << o.controller << "): named " << r.cause << ": " << r.findings.front().evidence;
+  }
+}
+
 TEST(IndependentTruth, CleanRecordsFromEveryControllerHaveNoCause) {
   const auto& controllers = test_support::effect_record_controllers();
   int named = 0;
