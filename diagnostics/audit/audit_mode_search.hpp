@@ -8,7 +8,7 @@
 // through that resonance (Tustin, prewarped at w) is the shape the mode adds to the position
 // residual (the loop's reaction to q left out: a start, not a fit). The frequency whose shape
 // explains most of the residual, on a 0.25 % log grid from 100 Hz to 0.95 of the Nyquist
-// frequency at two dampings, then a replay of the closed loop on a 0.25 % grid +-2 % around it
+// frequency at two dampings, then a replay of the closed loop on a 0.5 % grid +-8 % around it
 // (and at the residual's spectral peaks), both signs of the coupling, gives the start.
 #include <vector>
 
