@@ -8,9 +8,15 @@
 // NRMSE. The record is split in an estimation part (the first `estimation_fraction`) and a
 // validation part (the rest). Every candidate (each effect; channel effects once per channel)
 // is screened at +-1 and +-0.3 times its typical size, the best `fitted_candidates` are fitted on the
-// estimation part (audit_fit.hpp) and scored on the validation part: score = validation
-// nrmse_total * (1 + complexity_penalty * parameters) ranks them. The best candidate becomes
-// the cause only when its validation improvement is beyond what noise explains
+// estimation part (audit_fit.hpp) and scored on the validation part by the improvement z
+// over the nominal model (audit_significance.hpp) less `complexity_penalty` per parameter
+// beyond the first, which ranks them: z weighs the residual by the noise's own (coloured,
+// loop-shaped) covariance where the mean NRMSE weighs every output's noise alike, and the
+// penalty breaks near-ties toward the simpler effect (a broad three-parameter resonance
+// matched saturation of another curve at z 3.60 against 3.58). On independent records at 0.1 um / 1 mA the NRMSE
+// ranking named amplifier_gain for a coil resistance whose z was 1177 against 1055 (observer loop) and 189 against 34
+// (lead-lag), sensor_delay for eddy currents at z 7.9 against 8.3, and an air gap (z 4) before a flexible mode (z 9).
+// The best candidate becomes the cause only when its validation improvement is beyond what noise explains
 // (audit_significance.hpp: z above the Bonferroni threshold for `false_acceptance` over the
 // fitted candidates) and it lowers nrmse_total; otherwise cause = "none". On data where the
 // nominal model is right a cause is named with probability at most `false_acceptance`.
@@ -49,7 +55,7 @@ struct AuditOptions {
   std::function<void(const std::string& stage, std::size_t done, std::size_t total)> progress;
   double estimation_fraction = 0.5;
   int fitted_candidates = 5;
-  double complexity_penalty = 0.02;     // relative score penalty per fitted parameter (ranking)
+  double complexity_penalty = 0.5;      // ranking score = z - penalty * (parameters - 1)
   double false_acceptance = 0.01;       // P(a cause is named | the nominal model is right)
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
   FitOptions fit;
@@ -59,7 +65,7 @@ struct AuditFinding {
   sim::Effect effect;           // fitted; channel 0 means none (null in audit.json)
   Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
-  double score = 0.0;    // nrmse_total_after with the complexity penalty
+  double score = 0.0;    // the ranking (AuditOptions::complexity_penalty), higher first
   ImprovementTest test;  // validation improvement against noise
   bool accepted = false;
   std::string evidence;

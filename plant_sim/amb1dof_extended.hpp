@@ -9,7 +9,8 @@
 //   eddy_current         i1_force, i2_force  currents that make the force [A]
 //   flexible_mode        q, q_dot          modal displacement seen by the sensor [m, m/s]
 //   harmonic_disturbance harmonic_cos, harmonic_sin  cos and sin of 2 pi f t (start 1, 0)
-//   sensor_delay         x_sensor_1..n     past sensor values (discrete: advanced once per
+//   sensor_delay         x_sensor_1..n, x_dot_sensor_1..n  past sensed positions and velocities (discrete: advanced
+//   once per
 //                                          sample by advance(), derivative 0)
 // Outputs x (as the sensor reports it), i1, i2; inputs u1, u2; disturbance Fz.
 #include <string>
@@ -59,6 +60,7 @@ class Amb1dofExtended : public Plant {
   using Continuous = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 12, 1>;
   Continuous continuous_derivative(const Continuous& s, const Eigen::Vector2d& u, double Fz) const;
   double sensed_position(const Eigen::VectorXd& x) const;  // x + q, before delay and gain
+  double sensed_velocity(const Eigen::VectorXd& x) const;  // x_dot + q_dot
 
   Amb1dofVoltage base_;
   std::vector<Effect> effects_;

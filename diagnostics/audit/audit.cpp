@@ -9,6 +9,7 @@
 
 #include "core/controller_replay.hpp"
 #include "core/error.hpp"
+#include "diagnostics/audit/audit_mode_search.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -32,25 +33,23 @@ Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measu
   return best;
 }
 
-// Starting values of every candidate: switching parameters at +-1 and +-0.3 times their scale
-// (within range),
-// frequencies from the residual's strongest line (harmonic) or peaks (flexible mode).
-std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f,
-                                   const std::vector<double>& mode_f) {
+// Starting values of every candidate but the flexible mode (audit_mode_search.hpp):
+// switching parameters at +-1 and +-0.3 times their scale (within range), the frequency of a
+// harmonic from the residual's strongest line.
+std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f) {
   std::vector<sim::Effect> starts;
-  for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
-    for (const auto& p : spec.parameters) {
-      std::map<std::string, double> shape;
-      if (spec.name == "harmonic_disturbance" || spec.name == "flexible_mode") shape["f"] = f;
-      if (channel) shape["channel"] = channel;
-      if (!p.switches) continue;
-      for (double size : {1.0, -1.0, 0.3, -0.3}) {
-        if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
-        auto values = shape;
-        values[p.name] = size * p.scale;
-        starts.push_back(sim::make_effect(spec.name, values));
-      }
+  for (const auto& p : spec.parameters) {
+    std::map<std::string, double> shape;
+    if (spec.name == "harmonic_disturbance") shape["f"] = harmonic_f;
+    if (channel) shape["channel"] = channel;
+    if (!p.switches) continue;
+    for (double size : {1.0, -1.0, 0.3, -0.3}) {
+      if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
+      auto values = shape;
+      values[p.name] = size * p.scale;
+      starts.push_back(sim::make_effect(spec.name, values));
     }
+  }
   return starts;
 }
 
@@ -110,7 +109,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
   const double nyquist = 0.5 / dt;
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
-  // A mode shows as a resonance in the position residual: try its three strongest peaks.
+  // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
   std::vector<Candidate> candidates;
   std::size_t screened = 0;
@@ -118,7 +117,11 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     if (options.progress) options.progress("screen the effect catalogue", screened++, sim::effect_catalogue().size());
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
-      for (const auto& start : starts_of(spec, channel, harmonic_f, mode_f)) {
+      if (spec.name == "flexible_mode") {
+        const ModeStart mode = search_mode_start(measured, r.measured, r.nominal, r.estimation, mode_f);
+        best = {mode.effect, mode.cost};
+      }
+      for (const auto& start : starts_of(spec, channel, harmonic_f)) {
         const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
         if (c < best.cost || best.start.name.empty()) best = {start, c};
       }
@@ -150,11 +153,11 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
     f.test = improvement_test(r.measured, r.nominal, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
-    f.score = f.nrmse_total_after * (1.0 + options.complexity_penalty * double(fit.effect.parameters.size()));
+    f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
     scored.emplace_back(std::move(f), std::move(loop));
   }
   std::stable_sort(scored.begin(), scored.end(),
-                   [](const auto& a, const auto& b) { return a.first.score < b.first.score; });
+                   [](const auto& a, const auto& b) { return a.first.score > b.first.score; });
   for (auto& [finding, loop] : scored) r.findings.push_back(finding);
   r.false_acceptance = options.false_acceptance;
   r.z_threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(r.findings.size())));

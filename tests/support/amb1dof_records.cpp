@@ -21,21 +21,6 @@ Eigen::MatrixXd diagonal(std::initializer_list<double> values) {
   return d.asDiagonal();
 }
 
-// Other weights than amb1dof_observer_controller_options: deviations of 20 um, 20 mm/s and
-// 50 mA accepted (a softer regulator), the integral three times looser, more process noise
-// assumed in the velocity and current rows and observer poles within radius 0.9.
-sim::ObserverControllerOptions other_observer_options() {
-  sim::ObserverControllerOptions o;
-  o.integral_outputs = {"x"};
-  o.Q = diagonal({1.0 / (2e-5 * 2e-5), 1.0 / (2e-2 * 2e-2), 1.0 / (0.05 * 0.05), 1.0 / (0.05 * 0.05)});
-  o.Q_integral = diagonal({1.0 / (3e-4 * 3e-4)});
-  o.R = diagonal({1.0, 1.0});
-  o.W = diagonal({1e-12, 1e-5, 1e-3, 1e-3});
-  o.V = diagonal({1e-12, 1e-4, 1e-4});
-  o.observer_pole_radius = 0.9;
-  return o;
-}
-
 sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
   const std::vector<std::string>& known = amb1dof_record_controllers();
   if (std::find(known.begin(), known.end(), o.controller) == known.end())
@@ -65,6 +50,18 @@ sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
 }
 
 }  // namespace
+
+sim::ObserverControllerOptions other_observer_options() {
+  sim::ObserverControllerOptions o;
+  o.integral_outputs = {"x"};
+  o.Q = diagonal({1.0 / (2e-5 * 2e-5), 1.0 / (2e-2 * 2e-2), 1.0 / (0.05 * 0.05), 1.0 / (0.05 * 0.05)});
+  o.Q_integral = diagonal({1.0 / (3e-4 * 3e-4)});
+  o.R = diagonal({1.0, 1.0});
+  o.W = diagonal({1e-12, 1e-5, 1e-3, 1e-3});
+  o.V = diagonal({1e-12, 1e-4, 1e-4});
+  o.observer_pole_radius = 0.9;
+  return o;
+}
 
 const std::vector<std::string>& amb1dof_record_controllers() {
   static const std::vector<std::string> names = {"lqr", "pid", "leadlag", "observer"};

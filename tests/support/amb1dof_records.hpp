@@ -24,6 +24,7 @@
 
 #include "core/experiment.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
+#include "plant_sim/observer_controller.hpp"
 
 namespace ambid::test_support {
 
@@ -49,6 +50,12 @@ struct Amb1dofRecord {
   sim::Amb1dofParameters true_parameters;  // with i0 = i_eq
   std::map<std::string, double> truth;     // v1..v9 of true_parameters
 };
+
+// The "observer" controller's design weights, other than amb1dof_observer_controller_options:
+// deviations of 20 um, 20 mm/s and 50 mA accepted (a softer regulator), the integral three
+// times looser, more process noise assumed in the velocity and current rows and observer
+// poles within radius 0.9.
+sim::ObserverControllerOptions other_observer_options();
 
 // Throws Error for an unknown controller (naming the known ones) and what the simulator throws.
 Amb1dofRecord simulate_amb1dof_record(const Amb1dofRecordOptions& options);

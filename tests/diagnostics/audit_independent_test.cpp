@@ -1,0 +1,186 @@
+// The audit on records it did not generate (tests/support/amb1dof_effect_records.hpp: the
+// plant and effects written again, RK4 with 50 sub-steps, four controllers, coloured sensor
+// noise of 0.1 um / 1 mA, a process force): every effect at a moderate size, drawn, is named
+// with its channel (or, for the pairs the audit cannot tell apart at this noise, listed at
+// accepted_causes(), its partner: never an unrelated cause); clean records from every
+// controller give "none".
+// audit_independent_slow_test.cpp: false acceptance over 100 clean records, detection
+// probability against size.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "audit_independent_cases.hpp"
+#include "diagnostics/audit.hpp"
+#include "plant_sim/scenario.hpp"
+
+namespace ambid::diag {
+namespace {
+
+// Moderate sizes in multiples of the catalogue scale: where a record of 1 s at 1.5 V shows
+// the effect above the noise (0.1 um / 1 mA fed around the loop makes the nominal NRMSE
+// 0.5-0.9 by itself).
+const std::map<std::string, std::pair<double, double>>& moderate_multiples() {
+  static const std::map<std::string, std::pair<double, double>> m = {
+      {"coil_resistance", {1.0, 2.0}}, {"amplifier_gain", {1.0, 2.0}},       {"amplifier_bandwidth", {1.5, 2.0}},
+      {"eddy_current", {0.75, 1.0}},   {"sensor_delay", {3.0, 4.0}},         {"sensor_gain", {1.0, 1.5}},
+      {"flexible_mode", {3.0, 3.5}},   {"magnetic_saturation", {1.2, 2.0}},  {"air_gap", {2.0, 3.0}},
+      {"rotor_mass", {3.0, 4.0}},      {"harmonic_disturbance", {1.0, 2.0}}, {"force_factor", {1.0, 2.0}}};
+  return m;
+}
+
+// Controllers a case does not use, and why (measured on these records): a flexible mode at
+// 450 Hz with coupling 0.3 makes the observer loop unstable (spillover), eddy currents of
+// 1-2e-4 s the lead-lag loop.
+bool excluded(const std::string& effect, const std::string& controller) {
+  return (effect == "flexible_mode" && controller == "observer") ||
+         (effect == "eddy_current" && controller == "leadlag");
+}
+
+bool in_catalogue(const std::string& name) {
+  const auto names = sim::effect_names();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+class IndependentTruth : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(IndependentTruth, AuditNamesTheEffectAndItsChannel) {
+  const std::string name = GetParam();
+  if (!in_catalogue(name)) GTEST_SKIP() << name << " is not in the catalogue yet";
+  const auto names = testing::independent_effect_names();
+  const auto index = std::uint64_t(std::find(names.begin(), names.end(), name) - names.begin());
+  std::vector<std::string> controllers;
+  for (const auto& c : test_support::effect_record_controllers())
+    if (!excluded(name, c)) controllers.push_back(c);
+  for (std::uint64_t draw = 0; draw < 2; ++draw) {
+    const std::uint64_t seed = 4100 + 17 * index + draw;
+    std::mt19937_64 rng(seed);
+    const auto [lo, hi] = moderate_multiples().at(name);
+    const double multiple = std::uniform_real_distribution<double>(lo, hi)(rng);
+    sim::Effect truth = testing::effect_at(name, multiple, seed);
+    test_support::EffectRecordOptions o =
+        testing::realistic_record(controllers[(index + draw) % controllers.size()], seed);
+    if (name == "flexible_mode") {  // a mode needs more data: 2 s at 2 V, 600-800 Hz
+      truth.parameters["f"] = std::uniform_real_distribution<double>(600.0, 800.0)(rng);
+      o.amplitude = 2.0;
+      o.duration = 2.0;
+    }
+    // The two lags (force behind current, measurement behind position) differ by a cost of
+    // ~0.002 (NRMSE^2) at 1.5-2e-4 s, where a larger lag makes every loop unstable: 2 s.
+    if (name == "eddy_current" || name == "sensor_delay") o.duration = 2.0;
+    o.effects = {truth};
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    ASSERT_FALSE(r.findings.empty());
+    const AuditFinding& best = r.findings.front();
+    std::string hidden = o.controller + ", hidden";
+    for (const auto& [key, value] : truth.parameters) hidden += " " + key + "=" + std::to_string(value);
+    if (name == "flexible_mode") {  // found 4 of 6 times at this size: never another cause
+      EXPECT_TRUE(r.cause == name || r.cause == "none")
+          << hidden << ": found " << best.effect.name << ": " << best.evidence;
+      continue;
+    }
+    const auto accepted = testing::accepted_causes(name);
+    EXPECT_TRUE(std::find(accepted.begin(), accepted.end(), r.cause) != accepted.end())
+        << hidden << ": found " << best.effect.name << ": " << best.evidence;
+    EXPECT_EQ(best.effect.channel, truth.channel) << hidden;
+    if (r.cause == name) {  // the fitted size within 35 % of the truth's (an independent plant)
+      EXPECT_NEAR(testing::relative_size(best.effect), testing::relative_size(truth),
+                  0.35 * testing::relative_size(truth))
+          << hidden << ": " << best.evidence;
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Catalogue, IndependentTruth, ::testing::ValuesIn(testing::independent_effect_names()),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+// Saturation by another curve (phi = a_s tanh(a / a_s), i_sat 1.2 A) than the catalogue's is
+// still magnetic_saturation, not a sensor gain: the misses of the first independent suite.
+TEST(IndependentTruth, SaturationOfAnotherCurveIsNotASensorGain) {
+  for (const std::string controller : {"lqr", "pid"}) {
+    test_support::EffectRecordOptions o = testing::realistic_record(controller, 4300);
+    o.effects = {sim::Effect{"magnetic_saturation", 0, {{"i_sat", 1.2}}}};
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    EXPECT_EQ(r.cause, "magnetic_saturation") << controller << ": " << r.findings.front().evidence;
+  }
+}
+
+// The generator and the audit's replay (Amb1dofExtended in run_closed_loop) are two
+// implementations of EFFECTS.md: noise-free, with the same controller and r, every effect at
+// its catalogue scale (a mode at 1.3 kHz) comes out the same within 1e-3 of the effect itself
+// (measured: 2e-9 to 7e-4; before the replay's sub-step rule the mode was 0.14 off, before its
+// Hermite interpolation a delay of half a sample 0.017).
+TEST(IndependentTruth, NoiseFreeRecordsAgreeWithTheAuditsReplay) {
+  test_support::EffectRecordOptions o;
+  o.duration = 0.3;
+  o.amplitude = 0.5;
+  o.position_noise = o.current_noise = o.force_noise = 0.0;
+  const Eigen::MatrixXd clean = test_support::simulate_effect_record(o).y_deviation();
+  for (const auto& spec : sim::effect_catalogue()) {
+    std::map<std::string, double> values;
+    for (const auto& p : spec.parameters)
+      if (p.switches) values[p.name] = p.scale;
+    if (spec.name == "flexible_mode") values["f"] = 1300.0;
+    if (spec.has_channel) values["channel"] = 2;
+    o.effects = {sim::make_effect(spec.name, values)};
+    const Eigen::MatrixXd independent = test_support::simulate_effect_record(o).y_deviation();
+    sim::ScenarioOptions s;
+    s.duration = o.duration;
+    s.amplitude = o.amplitude;
+    s.seed = o.seed;
+    s.effects = o.effects;
+    const Eigen::MatrixXd replayed = sim::simulate_scenario(s).y_deviation();
+    for (Eigen::Index j = 0; j < clean.cols(); ++j) {
+      const double effect = (independent.col(j) - clean.col(j)).norm();
+      ASSERT_GT(effect, 0.0) << spec.name;
+      EXPECT_LT((independent.col(j) - replayed.col(j)).norm(), 1e-3 * effect) << spec.name << " output " << j;
+    }
+  }
+}
+
+// Mismatches outside the catalogue are not forced onto it: the nominal model is rejected but
+// the cause is "unexplained" (experiment-format.md), never a catalogue effect. Needs the
+// residual check of branch audit-accept, which brings force_factor into the catalogue with it.
+TEST(IndependentTruth, OutOfCatalogueMismatchesAreUnexplained) {
+  if (!in_catalogue("force_factor")) GTEST_SKIP() << "needs audit-accept's \"unexplained\" (not merged yet)";
+  const auto& controllers = test_support::effect_record_controllers();
+  for (int c = 0; c < 4; ++c) {
+    test_support::EffectRecordOptions o =
+        testing::realistic_record(controllers[std::size_t(c)], 4700 + std::uint64_t(c));
+    test_support::OutOfCatalogue& x = o.out_of_catalogue;
+    const char* what = "";
+    if (c == 0) x.inductance_error = 0.05, x.inductance_channel = 2, what = "Ls2 +5 %";
+    if (c == 1) x.sensor_offset = 5e-6, what = "sensor offset 5 um";
+    if (c == 2) x.modes = {{0.3, 650.0, 0.015}, {0.3, 1500.0, 0.01}}, what = "two flexible modes";
+    if (c == 3) x.gain_drift = 0.1, x.gain_drift_period = 0.5, what = "amplifier 1 gain +-10 % at 2 Hz";
+    const AuditResult r = run_audit(test_support::simulate_effect_record(o));
+    ASSERT_FALSE(r.findings.empty());
+    // Two modes: the catalogue's one mode is a fair first cause (before the merge: named at
+    // z 4.1 under PID; the offset gave none at a nominal NRMSE of 1.74, Ls2 and the drift none).
+    const bool fair = r.cause == "unexplained" || r.cause == "none" || (c == 2 && r.cause == "flexible_mode");
+    EXPECT_TRUE(fair) << what << " (" << o.controller << "): named " << r.cause << ": " << r.findings.front().evidence;
+  }
+}
+
+TEST(IndependentTruth, CleanRecordsFromEveryControllerHaveNoCause) {
+  const auto& controllers = test_support::effect_record_controllers();
+  int named = 0;
+  for (std::uint64_t s = 0; s < 12; ++s) {
+    const std::string& controller = controllers[s % controllers.size()];
+    const AuditResult r =
+        run_audit(test_support::simulate_effect_record(testing::realistic_record(controller, 4500 + s)));
+    ASSERT_FALSE(r.findings.empty());
+    if (r.cause != "none") ++named;
+    EXPECT_EQ(r.cause, "none") << controller << " seed " << 4500 + s << ": " << r.findings.front().evidence;
+    EXPECT_GT(r.findings.front().nrmse_total_after, 0.95 * r.baseline_total) << controller;
+  }
+  EXPECT_EQ(named, 0);
+}
+
+}  // namespace
+}  // namespace ambid::diag
