@@ -18,12 +18,17 @@ const std::vector<std::string>& families_with_fault_signatures() {
 
 void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece, const std::string& who) {
   const sim::PlantFamily& family = sim::plant_family(model, who);
-  if (piece == DiagnosticsPiece::effect_catalogue && !family.effect_catalogue)
+  if (piece == DiagnosticsPiece::effect_catalogue && (!family.effect_catalogue || !family.make_extended_plant))
     sim::family_lacks(family, "effect catalogue", who);
   const auto& signed_families = families_with_fault_signatures();
   if (piece == DiagnosticsPiece::fault_signatures &&
       std::find(signed_families.begin(), signed_families.end(), model) == signed_families.end())
     sim::family_lacks(family, "fault signatures (nor monitored parameters)", who);
+}
+
+const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model, const std::string& who) {
+  require_diagnostics_piece(model, DiagnosticsPiece::effect_catalogue, who);
+  return sim::plant_family(model, who).effect_catalogue();
 }
 
 }  // namespace ambid::diag

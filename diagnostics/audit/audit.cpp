@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -34,8 +35,8 @@ Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measu
 // Starting values of every candidate: switching parameters at +-1 and +-0.3 times their scale
 // (within range),
 // frequencies from the residual's strongest line (harmonic) or peaks (flexible mode).
-std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f,
-                                   const std::vector<double>& mode_f) {
+std::vector<sim::Effect> starts_of(const std::vector<sim::EffectSpec>& catalogue, const sim::EffectSpec& spec,
+                                   int channel, double harmonic_f, const std::vector<double>& mode_f) {
   std::vector<sim::Effect> starts;
   for (double f : spec.name == "flexible_mode" ? mode_f : std::vector<double>{harmonic_f})
     for (const auto& p : spec.parameters) {
@@ -47,7 +48,7 @@ std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, dou
         if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
         auto values = shape;
         values[p.name] = size * p.scale;
-        starts.push_back(sim::make_effect(spec.name, values));
+        starts.push_back(sim::make_effect(catalogue, spec.name, values));
       }
     }
   return starts;
@@ -56,7 +57,7 @@ std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, dou
 std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::VectorXd& correlation) {
   std::ostringstream s;
   s.precision(3);
-  s << sim::effect_spec(f.effect.name).summary << ";";
+  s << sim::effect_spec(effect_catalogue_of(r.plant_model, "audit"), f.effect.name).summary << ";";
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     s << " " << r.outputs[j] << " NRMSE " << r.baseline_nrmse[Eigen::Index(j)] << " -> "
       << f.nrmse_after[Eigen::Index(j)];
@@ -77,6 +78,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const double dt = measured.sample_time;
   const Eigen::Index N = measured.samples();
   AuditResult r;
+  r.plant_model = measured.plant.model;
+  const std::vector<sim::EffectSpec>& catalogue = effect_catalogue_of(r.plant_model, "audit");
   r.outputs = measured.y_names;
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
@@ -109,10 +112,10 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   // A mode shows as a resonance in the position residual: try its three strongest peaks.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
   std::vector<Candidate> candidates;
-  for (const auto& spec : sim::effect_catalogue()) {
+  for (const auto& spec : catalogue) {
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
-      for (const auto& start : starts_of(spec, channel, harmonic_f, mode_f)) {
+      for (const auto& start : starts_of(catalogue, spec, channel, harmonic_f, mode_f)) {
         const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
         if (c < best.cost || best.start.name.empty()) best = {start, c};
       }
