@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "diagnostics/audit/maglev_starts.hpp"
 #include "plant_sim/families.hpp"
 
 namespace ambid::diag {
@@ -13,6 +14,13 @@ const std::vector<std::string>& families_with_fault_signatures() {
   static const std::vector<std::string> names = {"amb1dof_voltage"};
   return names;
 }
+
+// The families whose audit reads starting values from the record.
+struct DataStarts {
+  const char* family;
+  std::vector<sim::Effect> (*starts)(const Experiment&);
+};
+constexpr DataStarts kDataStarts[] = {{"maglev1coil_voltage", maglev_audit_starts}};
 
 }  // namespace
 
@@ -29,6 +37,12 @@ void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece,
 const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model, const std::string& who) {
   require_diagnostics_piece(model, DiagnosticsPiece::effect_catalogue, who);
   return sim::plant_family(model, who).effect_catalogue();
+}
+
+std::vector<sim::Effect> audit_starts_from_data(const Experiment& measured) {
+  for (const auto& d : kDataStarts)
+    if (measured.plant.model == d.family) return d.starts(measured);
+  return {};
 }
 
 }  // namespace ambid::diag

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/experiment.hpp"
 #include "plant_sim/effects.hpp"
 
 namespace ambid::diag {
@@ -22,5 +23,9 @@ void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece,
 
 // The family's effect catalogue, with the errors of require_diagnostics_piece.
 const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model, const std::string& who);
+
+// Starting values of the audit's candidates that the family reads from the record itself
+// (maglev1coil_voltage: its grey-box fit, audit/maglev_starts.hpp); empty for a family without.
+std::vector<sim::Effect> audit_starts_from_data(const Experiment& measured);
 
 }  // namespace ambid::diag

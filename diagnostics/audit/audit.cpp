@@ -111,11 +111,15 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
   // A mode shows as a resonance in the position residual: try its three strongest peaks.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
+  const std::vector<sim::Effect> data_starts = audit_starts_from_data(measured);
   std::vector<Candidate> candidates;
   for (const auto& spec : catalogue) {
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
-      for (const auto& start : starts_of(catalogue, spec, channel, harmonic_f, mode_f)) {
+      std::vector<sim::Effect> starts = starts_of(catalogue, spec, channel, harmonic_f, mode_f);
+      for (const auto& s : data_starts)
+        if (s.name == spec.name && s.channel == channel) starts.push_back(s);
+      for (const auto& start : starts) {
         const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
         if (c < best.cost || best.start.name.empty()) best = {start, c};
       }
