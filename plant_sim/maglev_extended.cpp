@@ -33,7 +33,8 @@ MaglevExtended::MaglevExtended(const MaglevParameters& nominal, const MaglevOper
                                const std::vector<Effect>& effects, double sample_time)
     : p_(nominal), x0_(point.x), sample_time_(sample_time) {
   nominal.validate();
-  if (!(point.x > nominal.x_min && point.x < nominal.x_max)) fail("the operating gap must lie between the stops", point.x);
+  if (!(point.x > nominal.x_min && point.x < nominal.x_max))
+    fail("the operating gap must lie between the stops", point.x);
   if (measured && !(point.i > 0.0)) fail("the measured operating current must be positive", point.i);
   const auto& catalogue = maglev_effect_catalogue();
   std::set<std::string> seen;
@@ -118,8 +119,8 @@ MaglevExtended::Continuous MaglevExtended::continuous_derivative(const Continuou
   const double gap = s[0], rate = s[1], current = s[2];
   const double command = round_to(u, dac_step_);
   const double gap_power = std::pow(gap, p_.n_x);
-  const double emf = -p_.n_i * p_.Ke * std::pow(std::max(std::abs(current), min_current_), p_.n_i - 1.0) * rate /
-                     gap_power;
+  const double emf =
+      -p_.n_i * p_.Ke * std::pow(std::max(std::abs(current), min_current_), p_.n_i - 1.0) * rate / gap_power;
   double force = Fz;
   if (harmonic_state_ >= 0) force += harmonic_cos_ * s[harmonic_state_] + harmonic_sin_ * s[harmonic_state_ + 1];
   Continuous d(continuous_states_);
@@ -153,8 +154,8 @@ Eigen::VectorXd MaglevExtended::output(const Eigen::VectorXd& x) const {
   return Eigen::Vector2d(reading, x[2]);
 }
 
-void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
-                             double sample_time, int substeps) const {
+void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
+                             int substeps) const {
   require_size(x, continuous_states_ + delay_length_, "state");
   require_size(u, 1, "input (u)");
   require_size(w, 1, "disturbance (Fz)");
@@ -179,8 +180,8 @@ void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const
     s += (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4);
     if (!(s[0] > p_.x_min && s[0] < p_.x_max)) {
       std::ostringstream msg;
-      msg << "maglev1coil_voltage: the body touched the " << (s[0] <= p_.x_min ? "top stop" : "ground") << " (x = "
-          << s[0] * 1e3 << " mm)";
+      msg << "maglev1coil_voltage: the body touched the " << (s[0] <= p_.x_min ? "top stop" : "ground")
+          << " (x = " << s[0] * 1e3 << " mm)";
       throw Error(msg.str());
     }
   }

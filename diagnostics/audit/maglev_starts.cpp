@@ -1,23 +1,19 @@
 #include "diagnostics/audit/maglev_starts.hpp"
 
 #include "core/error.hpp"
-#include "identifier/families/maglev_greybox.hpp"
+#include "core/model_file.hpp"
+#include "identifier/identify_experiment.hpp"
+#include "identifier/plant_families.hpp"
 #include "plant_sim/maglev_effects.hpp"
 
 namespace ambid::diag {
 
 std::vector<sim::Effect> maglev_audit_starts(const Experiment& measured) {
-  ident::MaglevGreyBoxFit fit;
+  Model fit;
   try {
-    ident::MaglevGreyBoxInput in;
-    in.sample_time = measured.sample_time;
-    in.x = measured.signal("x");
-    in.i = measured.signal("i");
-    in.u = measured.signal("u");
-    in.x0 = measured.operating_value("x");
-    in.i0 = measured.operating_value("i");
-    in.nominal = measured.plant.parameters;
-    fit = ident::fit_maglev_greybox(in);
+    const ident::IdentificationFamily* family = ident::find_identification_family(measured.plant.model);
+    if (!family || !family->greybox) return {};
+    family->greybox(measured, ident::IdentifyOptions{}, fit);
   } catch (const Error&) {
     return {};  // InsufficientData included: the catalogue's own starts remain
   }
@@ -31,8 +27,8 @@ std::vector<sim::Effect> maglev_audit_starts(const Experiment& measured) {
     }
   };
   add("force_law",
-      {{"dn_i", fit.value.at("n_i") - nominal.at("n_i")}, {"dn_x", fit.value.at("n_x") - nominal.at("n_x")}});
-  add("coil_resistance", {{"dR", fit.value.at("R") - nominal.at("R")}});
+      {{"dn_i", fit.physical.at("n_i") - nominal.at("n_i")}, {"dn_x", fit.physical.at("n_x") - nominal.at("n_x")}});
+  add("coil_resistance", {{"dR", fit.physical.at("R") - nominal.at("R")}});
   return starts;
 }
 

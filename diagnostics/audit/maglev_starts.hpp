@@ -1,6 +1,6 @@
 #pragma once
 // Data-driven starting values of the maglev1coil_voltage audit's candidates: the family's
-// grey-box fit (identifier/families/maglev_greybox.hpp) reads the force-law exponents and the
+// grey-box fit (the identifier's method greybox, identifier/plant_families.hpp) reads the force-law exponents and the
 // coil resistance from x, i, u directly, so force_law and coil_resistance start where the data
 // put them, not only at the catalogue's typical sizes (from one of which the two-exponent fit
 // fell into a local minimum that keeps the levels' currents but not the dynamics).

@@ -79,10 +79,10 @@ TEST(MaglevExtended, TheDacRoundsTheCommandAndResistanceAndGainMoveTheCoil) {
   const MaglevExtended ideal(p, op, true, {}, 3.25e-3);
   EXPECT_NEAR(dac.derivative(x, Eigen::VectorXd::Constant(1, 4.1), kNoForce)[2],
               ideal.derivative(x, Eigen::VectorXd::Constant(1, 4.2), kNoForce)[2], 1e-12);  // 12 x 0.35
-  const MaglevExtended coil(p, op, true, {effect("coil_resistance", {{"dR", 25.0}}), effect("amplifier_gain", {{"dkw", 0.1}})},
-                            3.25e-3);
-  EXPECT_NEAR(coil.derivative(x, Eigen::VectorXd::Constant(1, 4.0), kNoForce)[2],
-              (1.1 * 4.0 - 235.0 * 0.019) / p.L, 1e-12);
+  const MaglevExtended coil(
+      p, op, true, {effect("coil_resistance", {{"dR", 25.0}}), effect("amplifier_gain", {{"dkw", 0.1}})}, 3.25e-3);
+  EXPECT_NEAR(coil.derivative(x, Eigen::VectorXd::Constant(1, 4.0), kNoForce)[2], (1.1 * 4.0 - 235.0 * 0.019) / p.L,
+              1e-12);
 }
 
 TEST(MaglevExtended, TheDelayedReadingLagsByWholeAndFractionalSamples) {
@@ -111,16 +111,28 @@ TEST(MaglevExtended, TheDelayedReadingLagsByWholeAndFractionalSamples) {
 TEST(MaglevExtended, BadEffectsAndTouchesAreClearErrors) {
   const MaglevParameters p = MaglevParameters::nominal();
   const MaglevOperatingPoint op{0.014, 0.019, 4.0};
-  EXPECT_THAT([&] { MaglevExtended(p, op, true, {make_effect("eddy_current", {{"tau", 1e-4}})}, 1e-3); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("unknown effect 'eddy_current' (known: force_law")));
-  EXPECT_THAT([&] { MaglevExtended(p, op, true, {Effect{"coil_resistance", 0, {{"dR", -210.0}}}}, 1e-3); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("the effects make the plant invalid")));
-  EXPECT_THAT([&] { MaglevExtended(p, op, true, {effect("sensor_offset", {{"dy", 4e-3}})}, 1e-3); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("true operating gap outside the stops")));
+  EXPECT_THAT(
+      [&] {
+        MaglevExtended(p, op, true, {make_effect("eddy_current", {{"tau", 1e-4}})}, 1e-3);
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("unknown effect 'eddy_current' (known: force_law")));
+  EXPECT_THAT(
+      [&] {
+        MaglevExtended(p, op, true, {Effect{"coil_resistance", 0, {{"dR", -210.0}}}}, 1e-3);
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("the effects make the plant invalid")));
+  EXPECT_THAT(
+      [&] {
+        MaglevExtended(p, op, true, {effect("sensor_offset", {{"dy", 4e-3}})}, 1e-3);
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("true operating gap outside the stops")));
   const MaglevExtended plant(p, op, true, {}, 1e-3);
   Eigen::VectorXd x = plant.equilibrium_state();
-  EXPECT_THAT([&] { for (int k = 0; k < 1000; ++k) plant.advance(x, Eigen::VectorXd::Zero(1), kNoForce, 1e-3, 1); },
-              ::testing::ThrowsMessage<Error>(HasSubstr("the body touched the ground")));
+  EXPECT_THAT(
+      [&] {
+        for (int k = 0; k < 1000; ++k) plant.advance(x, Eigen::VectorXd::Zero(1), kNoForce, 1e-3, 1);
+      },
+      ::testing::ThrowsMessage<Error>(HasSubstr("the body touched the ground")));
 }
 
 }  // namespace
