@@ -1,9 +1,11 @@
 #pragma once
 // The model audit (experiment-format.md, "Audit report"): where the nominal simulation of a
-// measured machine is wrong, which effect of the catalogue (plant_sim/effects.hpp) explains
-// it, that effect fitted, and the gain on data the fit did not see.
+// measured machine is wrong, which effect of its family's catalogue (plant_sim/families.hpp:
+// effects.hpp for amb1dof_voltage, maglev_effects.hpp for maglev1coil_voltage) explains it,
+// that effect fitted, and the gain on data the fit did not see.
 //
-// Method: the nominal amb1dof_voltage of the sidecar is replayed in closed loop with the
+// Method: the nominal model of the sidecar (the family's extended simulator with no effect) is
+// replayed in closed loop with the
 // recorded controller and excitation, and compared with the measurement by the contract's
 // NRMSE. The record is split in an estimation part (the first `estimation_fraction`) and a
 // validation part (the rest). Every candidate (each effect; channel effects once per channel)
@@ -72,6 +74,7 @@ struct AuditFinding {
 };
 
 struct AuditResult {
+  std::string plant_model;  // the family whose catalogue the findings come from
   std::vector<std::string> outputs, inputs;
   Eigen::VectorXd baseline_nrmse;      // nominal model, validation segment
   double baseline_total = 0.0;         // mean of the per-output NRMSE

@@ -9,14 +9,8 @@
 namespace ambid::sim {
 namespace {
 
-EffectParameterSpec switching(std::string name, std::string unit, double scale, double lower, double upper,
-                              std::string meaning) {
-  return {std::move(name), std::move(unit), 0.0, scale, lower, upper, true, std::move(meaning)};
-}
-EffectParameterSpec shape(std::string name, std::string unit, double value, double lower, double upper,
-                          std::string meaning) {
-  return {std::move(name), std::move(unit), value, value, lower, upper, false, std::move(meaning)};
-}
+constexpr auto switching = switching_parameter;
+constexpr auto shape = shape_parameter;
 
 std::vector<EffectSpec> build_catalogue() {
   return {
@@ -82,6 +76,16 @@ std::string join(const std::vector<std::string>& names) {
 
 }  // namespace
 
+EffectParameterSpec switching_parameter(std::string name, std::string unit, double scale, double lower, double upper,
+                                        std::string meaning) {
+  return {std::move(name), std::move(unit), 0.0, scale, lower, upper, true, std::move(meaning)};
+}
+
+EffectParameterSpec shape_parameter(std::string name, std::string unit, double value, double lower, double upper,
+                                    std::string meaning) {
+  return {std::move(name), std::move(unit), value, value, lower, upper, false, std::move(meaning)};
+}
+
 const std::vector<EffectSpec>& effect_catalogue() {
   static const std::vector<EffectSpec> catalogue = build_catalogue();
   return catalogue;
@@ -93,10 +97,15 @@ std::vector<std::string> effect_names() {
   return names;
 }
 
-const EffectSpec& effect_spec(const std::string& name) {
-  for (const auto& e : effect_catalogue())
+const EffectSpec& effect_spec(const std::string& name) { return effect_spec(effect_catalogue(), name); }
+
+const EffectSpec& effect_spec(const std::vector<EffectSpec>& catalogue, const std::string& name) {
+  std::vector<std::string> names;
+  for (const auto& e : catalogue) {
     if (e.name == name) return e;
-  throw Error("unknown effect '" + name + "' (known: " + join(effect_names()) + ")");
+    names.push_back(e.name);
+  }
+  throw Error("unknown effect '" + name + "' (known: " + join(names) + ")");
 }
 
 double Effect::at(const std::string& parameter) const {
@@ -105,14 +114,20 @@ double Effect::at(const std::string& parameter) const {
   return it->second;
 }
 
-bool Effect::neutral() const {
-  const EffectSpec& spec = effect_spec(name);
+bool Effect::neutral() const { return neutral(effect_spec(name)); }
+
+bool Effect::neutral(const EffectSpec& spec) const {
   return std::all_of(spec.parameters.begin(), spec.parameters.end(),
                      [&](const EffectParameterSpec& p) { return !p.switches || at(p.name) == p.neutral; });
 }
 
 Effect make_effect(const std::string& name, const std::map<std::string, double>& values) {
-  const EffectSpec& spec = effect_spec(name);
+  return make_effect(effect_catalogue(), name, values);
+}
+
+Effect make_effect(const std::vector<EffectSpec>& catalogue, const std::string& name,
+                   const std::map<std::string, double>& values) {
+  const EffectSpec& spec = effect_spec(catalogue, name);
   Effect e{name, spec.has_channel ? 1 : 0, {}};
   for (const auto& p : spec.parameters) e.parameters[p.name] = p.neutral;
   for (const auto& [key, value] : values) {

@@ -20,6 +20,13 @@ struct EffectParameterSpec {
   std::string meaning;
 };
 
+// A parameter that switches its effect on (neutral 0), and a shape parameter (neutral = typical
+// = `value`), for building catalogues.
+EffectParameterSpec switching_parameter(std::string name, std::string unit, double scale, double lower, double upper,
+                                        std::string meaning);
+EffectParameterSpec shape_parameter(std::string name, std::string unit, double value, double lower, double upper,
+                                    std::string meaning);
+
 struct EffectSpec {
   std::string name;
   bool has_channel = false;  // belongs to coil/amplifier 1 or 2 (parameter `channel`)
@@ -27,11 +34,13 @@ struct EffectSpec {
   std::string summary;
 };
 
-// The eleven effects in vocabulary order.
+// The eleven effects of amb1dof_voltage in vocabulary order. Other families bring their own
+// catalogue (plant_sim/families.hpp); the functions that take a `catalogue` work on any.
 const std::vector<EffectSpec>& effect_catalogue();
 std::vector<std::string> effect_names();
 // Error listing the valid names for an unknown one.
 const EffectSpec& effect_spec(const std::string& name);
+const EffectSpec& effect_spec(const std::vector<EffectSpec>& catalogue, const std::string& name);
 
 // One effect with all its parameter values; channel is 1 or 2 for channel effects, else 0.
 struct Effect {
@@ -40,7 +49,9 @@ struct Effect {
   std::map<std::string, double> parameters;
 
   double at(const std::string& parameter) const;  // Error for an unknown parameter
-  // True when the effect changes nothing (every switching parameter at its neutral value).
+  // True when the effect changes nothing (every switching parameter of `spec`, or of its
+  // amb1dof_voltage entry, at its neutral value).
+  bool neutral(const EffectSpec& spec) const;
   bool neutral() const;
 };
 
@@ -48,5 +59,7 @@ struct Effect {
 // `channel` for channel effects, default 1). Error naming an unknown parameter (listing the
 // valid ones), a value outside its range, or a channel other than 1 or 2.
 Effect make_effect(const std::string& name, const std::map<std::string, double>& values = {});
+Effect make_effect(const std::vector<EffectSpec>& catalogue, const std::string& name,
+                   const std::map<std::string, double>& values = {});
 
 }  // namespace ambid::sim

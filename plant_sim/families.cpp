@@ -5,12 +5,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/amb1dof_scenario.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/lamstf.hpp"
 #include "plant_sim/lamstf_scenario.hpp"
 #include "plant_sim/linear_plant.hpp"
 #include "plant_sim/maglev1coil_voltage.hpp"
+#include "plant_sim/maglev_effects.hpp"
+#include "plant_sim/maglev_extended.hpp"
 #include "plant_sim/maglev_linearize.hpp"
 #include "plant_sim/maglev_scenario.hpp"
 
@@ -27,6 +30,11 @@ ContinuousSystem amb1dof_linearize(const Experiment& header) {
 
 ScenarioOptions amb1dof_default_options() { return ScenarioOptions{}; }
 
+std::unique_ptr<Plant> amb1dof_extended_plant(const Experiment& header, const std::vector<Effect>& effects) {
+  return std::make_unique<Amb1dofExtended>(Amb1dofParameters::from_map(header.plant.parameters), effects,
+                                           header.sample_time);
+}
+
 bool measured_point(const Experiment& header) {
   const nlohmann::json& extra = header.extra.json();
   return extra.is_object() && extra.value("operating_point_source", std::string()) == "measured";
@@ -42,6 +50,11 @@ MaglevOperatingPoint maglev_point(const Experiment& header) {
 std::unique_ptr<Plant> maglev_plant(const Experiment& header) {
   return std::make_unique<Maglev1coilVoltage>(MaglevParameters::from_map(header.plant.parameters),
                                               maglev_point(header).x);
+}
+
+std::unique_ptr<Plant> maglev_extended_plant(const Experiment& header, const std::vector<Effect>& effects) {
+  return std::make_unique<MaglevExtended>(MaglevParameters::from_map(header.plant.parameters), maglev_point(header),
+                                          measured_point(header), effects, header.sample_time);
 }
 
 ContinuousSystem maglev_linearize_header(const Experiment& header) {
@@ -65,13 +78,14 @@ const std::vector<PlantFamily>& plant_families() {
   static const std::vector<PlantFamily> families = {
       {"amb1dof_voltage", "one bearing axis, two opposing voltage-driven coils (seed 000)", Amb1dofParameters::names,
        [] { return Amb1dofParameters::nominal().to_map(); }, amb1dof_plant, amb1dof_linearize, build_amb1dof_scenario,
-       simulate_amb1dof, amb1dof_default_options, true},
+       simulate_amb1dof, amb1dof_default_options, effect_catalogue, amb1dof_extended_plant},
       {"maglev1coil_voltage", "one electromagnet levitating a body against gravity (maglev-rig.md)",
        MaglevParameters::names, [] { return MaglevParameters::nominal().to_map(); }, maglev_plant,
-       maglev_linearize_header, nullptr, simulate_maglev, maglev_default_options, false},
+       maglev_linearize_header, nullptr, simulate_maglev, maglev_default_options, maglev_effect_catalogue,
+       maglev_extended_plant},
       {"lamstf", "LAMSTF 5-DOF magnetic suspension, seed 002's linear analytical model under its LQR", no_parameters,
        [] { return std::map<std::string, double>{}; }, lamstf_plant, lamstf_linearize, build_lamstf_scenario,
-       simulate_lamstf, lamstf_default_options, false},
+       simulate_lamstf, lamstf_default_options, nullptr, nullptr},
   };
   return families;
 }

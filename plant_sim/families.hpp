@@ -1,8 +1,9 @@
 #pragma once
 // The plant families plant_sim knows, in one place (experiment-format.md, "Plant families"):
 // each brings its parameter names and nominal values, its nonlinear simulator, its
-// linearisation at the operating point of an experiment, and says which optional pieces it
-// lacks (the effect catalogue). Everything that dispatches on a plant model name
+// linearisation at the operating point of an experiment, its effect catalogue with the
+// simulator that switches those effects on, and says which optional pieces it lacks.
+// Everything that dispatches on a plant model name
 // (`ambid sim`, the scenario builder, the audit's replay) looks the family up here; an unknown
 // name is refused with the list of known ones.
 #include <map>
@@ -12,6 +13,7 @@
 
 #include "core/experiment.hpp"
 #include "core/state_space.hpp"
+#include "plant_sim/effects.hpp"
 #include "plant_sim/plant.hpp"
 #include "plant_sim/scenario.hpp"
 
@@ -35,8 +37,12 @@ struct PlantFamily {
   Experiment (*simulate)(const ScenarioOptions& options, ClosedLoopStatistics* statistics) = nullptr;
   // The options `ambid sim` starts from for this family (sample time, duration, excitation).
   ScenarioOptions (*default_options)() = nullptr;
-  // The effect catalogue of effects.hpp (amplifier, coil, sensor effects of the truth) applies.
-  bool effect_catalogue = false;
+  // The effects a real plant of the family shows and the nominal model leaves out (the
+  // audit's candidates, effects.hpp); null for a family without a catalogue.
+  const std::vector<EffectSpec>& (*effect_catalogue)() = nullptr;
+  // The nonlinear plant of `header` (nominal parameters, operating point, sample time) with
+  // `effects` of the catalogue switched on; null without a catalogue.
+  std::unique_ptr<Plant> (*make_extended_plant)(const Experiment& header, const std::vector<Effect>& effects) = nullptr;
 };
 
 // Every family, amb1dof_voltage first, then maglev1coil_voltage and lamstf.

@@ -16,9 +16,9 @@ void require(bool ok, const std::string& message) {
 
 Experiment simulate_maglev(const ScenarioOptions& o, ClosedLoopStatistics* statistics) {
   require(o.effects.empty(),
-          "plant model 'maglev1coil_voltage' has no effect catalogue yet; the rig's sensor and "
-          "actuator errors are --rig settings (sensor_gain, sensor_offset, sensor_exponent, "
-          "sensor_coupling, sensor_delay, dac_step)");
+          "the rig loop of 'maglev1coil_voltage' takes its truth's errors as --rig settings "
+          "(sensor_gain, sensor_offset, sensor_exponent, sensor_coupling, sensor_delay, dac_step) and "
+          "true parameters (--set), not as effects (its catalogue is the audit's candidate models)");
   require(o.controller == "pid", "the rig runs its board's PID (controller 'pid'), got '" + o.controller + "'");
   require(o.excitation == "uniform" || o.excitation == "none",
           "excitation must be uniform (white noise added to u, not logged) or none, got '" + o.excitation + "'");

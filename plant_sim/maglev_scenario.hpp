@@ -5,7 +5,7 @@
 
 namespace ambid::sim {
 
-// Error for effects (the family has no effect catalogue yet), a controller other than the rig's
+// Error for effects (the rig loop takes its truth's errors as rig settings), a controller other than the rig's
 // pid, an excitation other than uniform or none, an input limit (the rig's is v_ref), and a
 // touch of a stop (the message of maglev_loop.hpp; run_maglev_rig gives the record up to it).
 Experiment simulate_maglev(const ScenarioOptions& options, ClosedLoopStatistics* statistics);

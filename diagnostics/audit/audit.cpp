@@ -10,6 +10,7 @@
 #include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_mode_search.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -36,7 +37,8 @@ Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measu
 // Starting values of every candidate but the flexible mode (audit_mode_search.hpp):
 // switching parameters at +-1 and +-0.3 times their scale (within range), the frequency of a
 // harmonic from the residual's strongest line.
-std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, double harmonic_f) {
+std::vector<sim::Effect> starts_of(const std::vector<sim::EffectSpec>& catalogue, const sim::EffectSpec& spec,
+                                   int channel, double harmonic_f) {
   std::vector<sim::Effect> starts;
   for (const auto& p : spec.parameters) {
     std::map<std::string, double> shape;
@@ -47,7 +49,7 @@ std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, dou
       if (size * p.scale < p.lower || size * p.scale > p.upper) continue;
       auto values = shape;
       values[p.name] = size * p.scale;
-      starts.push_back(sim::make_effect(spec.name, values));
+      starts.push_back(sim::make_effect(catalogue, spec.name, values));
     }
   }
   return starts;
@@ -56,7 +58,7 @@ std::vector<sim::Effect> starts_of(const sim::EffectSpec& spec, int channel, dou
 std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::VectorXd& correlation) {
   std::ostringstream s;
   s.precision(3);
-  s << sim::effect_spec(f.effect.name).summary << ";";
+  s << sim::effect_spec(effect_catalogue_of(r.plant_model, "audit"), f.effect.name).summary << ";";
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     s << " " << r.outputs[j] << " NRMSE " << r.baseline_nrmse[Eigen::Index(j)] << " -> "
       << f.nrmse_after[Eigen::Index(j)];
@@ -77,6 +79,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const double dt = measured.sample_time;
   const Eigen::Index N = measured.samples();
   AuditResult r;
+  r.plant_model = measured.plant.model;
+  const std::vector<sim::EffectSpec>& catalogue = effect_catalogue_of(r.plant_model, "audit");
   r.outputs = measured.y_names;
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
@@ -111,17 +115,21 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
   // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
   const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
+  const std::vector<sim::Effect> data_starts = audit_starts_from_data(measured);
   std::vector<Candidate> candidates;
   std::size_t screened = 0;
-  for (const auto& spec : sim::effect_catalogue()) {
-    if (options.progress) options.progress("screen the effect catalogue", screened++, sim::effect_catalogue().size());
+  for (const auto& spec : catalogue) {
+    if (options.progress) options.progress("screen the effect catalogue", screened++, catalogue.size());
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
       if (spec.name == "flexible_mode") {
         const ModeStart mode = search_mode_start(measured, r.measured, r.nominal, r.estimation, mode_f);
         best = {mode.effect, mode.cost};
       }
-      for (const auto& start : starts_of(spec, channel, harmonic_f)) {
+      std::vector<sim::Effect> starts = starts_of(catalogue, spec, channel, harmonic_f);
+      for (const auto& s : data_starts)
+        if (s.name == spec.name && s.channel == channel) starts.push_back(s);
+      for (const auto& start : starts) {
         const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
         if (c < best.cost || best.start.name.empty()) best = {start, c};
       }

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/error.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "identifier/nonlinear_least_squares.hpp"
 
 namespace ambid::diag {
@@ -58,7 +59,7 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
 
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
                      const Segment& estimation, const FitOptions& options) {
-  const sim::EffectSpec& spec = sim::effect_spec(start.name);
+  const sim::EffectSpec& spec = sim::effect_spec(effect_catalogue_of(measured.plant.model, "audit"), start.name);
   ReplayResiduals residuals{measured, measured_y, start, spec.parameters, estimation, {}};
   residuals.inverse_spread =
       nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();

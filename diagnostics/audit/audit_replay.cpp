@@ -1,9 +1,11 @@
 #include "diagnostics/audit/audit_replay.hpp"
 
+#include <memory>
+
 #include "core/error.hpp"
 #include "diagnostics/plant_families.hpp"
-#include "plant_sim/amb1dof_extended.hpp"
 #include "plant_sim/closed_loop.hpp"
+#include "plant_sim/families.hpp"
 
 namespace ambid::diag {
 
@@ -21,8 +23,8 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   if (samples < 1 || samples > measured.samples())
     throw Error("audit: cannot replay " + std::to_string(samples) + " of " + std::to_string(measured.samples()) +
                 " samples");
-  const sim::Amb1dofExtended model(sim::Amb1dofParameters::from_map(measured.plant.parameters), effects,
-                                   measured.sample_time);
+  const std::unique_ptr<sim::Plant> model =
+      sim::plant_family(measured.plant.model, "audit").make_extended_plant(measured, effects);
   sim::ClosedLoopOptions options;
   options.samples = samples;
   options.excitation = measured.r_deviation().topRows(samples);
@@ -31,7 +33,7 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   header.y.resize(0, 0);
   header.u.resize(0, 0);
   header.r.resize(0, 0);
-  const Experiment replayed = sim::run_closed_loop(model, header, options);
+  const Experiment replayed = sim::run_closed_loop(*model, header, options);
   return {replayed.y_deviation(), replayed.u_deviation()};
 }
 

@@ -22,10 +22,11 @@ struct Segment {
   Eigen::Index size() const { return end - begin; }
 };
 
-// The nominal amb1dof_voltage of the sidecar with `effects`, replayed for the first `samples`
-// samples; outputs as deviations from the operating point (samples x outputs). Error when the
-// experiment has no controller or no excitation, is not amb1dof_voltage, or the model leaves
-// its valid region (e.g. the rotor touches the bearing).
+// The nominal model of the sidecar's plant family with `effects` of its catalogue (the family's
+// extended simulator, plant_sim/families.hpp), replayed for the first `samples` samples;
+// outputs as deviations from the operating point (samples x outputs). Error when the
+// experiment has no controller or no excitation, its family has no effect catalogue, or the
+// model leaves its valid region (e.g. the rotor touches the bearing).
 Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
                                Eigen::Index samples);
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "diagnostics/plant_families.hpp"
 #include "services/report/figure.hpp"
 #include "services/report/svg.hpp"
 #include "services/report/xml_escape.hpp"
@@ -173,11 +174,12 @@ std::string audit_verdict(const diag::AuditResult& r) {
     return s.str();
   }
   const auto& f = r.findings.front();
+  const sim::EffectSpec& spec = sim::effect_spec(diag::effect_catalogue_of(r.plant_model, "audit"), f.effect.name);
   s << "The simulation misses " << f.effect.name;
   if (f.effect.channel) s << " on channel " << f.effect.channel;
-  s << " (" << sim::effect_spec(f.effect.name).summary << "). With it fitted (";
+  s << " (" << spec.summary << "). With it fitted (";
   bool first = true;
-  for (const auto& p : sim::effect_spec(f.effect.name).parameters) {
+  for (const auto& p : spec.parameters) {
     s << (first ? "" : ", ") << p.name << " = " << f.effect.at(p.name) << " " << p.unit;
     first = false;
   }
@@ -215,7 +217,7 @@ std::string audit_report_html(const diag::AuditResult& r, const std::string& exp
   for (const auto& f : r.findings) {
     h << "<tr><td>" << f.effect.name << "</td><td>" << (f.effect.channel ? std::to_string(f.effect.channel) : "&ndash;")
       << "</td><td>";
-    for (const auto& p : sim::effect_spec(f.effect.name).parameters)
+    for (const auto& p : sim::effect_spec(diag::effect_catalogue_of(r.plant_model, "audit"), f.effect.name).parameters)
       h << xml_escape(p.name) << " = " << f.effect.at(p.name) << " " << xml_escape(p.unit) << "<br>";
     h << "</td><td>" << f.nrmse_total_after << "</td><td>" << f.test.z << "</td><td>" << (f.accepted ? "yes" : "no")
       << "</td><td>" << xml_escape(f.evidence) << "</td></tr>\n";

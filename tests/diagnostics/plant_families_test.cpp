@@ -23,9 +23,21 @@ TEST(DiagnosticsFamilies, TheBearingHasEveryPiece) {
   EXPECT_EQ(error_of("amb1dof_voltage", DiagnosticsPiece::fault_signatures), "");
 }
 
+TEST(DiagnosticsFamilies, EachFamilyBringsItsOwnCatalogue) {
+  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::effect_catalogue), "");
+  std::vector<std::string> names;
+  for (const auto& spec : effect_catalogue_of("maglev1coil_voltage", "audit")) names.push_back(spec.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"force_law", "coil_resistance", "amplifier_gain", "sensor_gain",
+                                             "sensor_offset", "sensor_nonlinearity", "sensor_delay",
+                                             "actuator_quantisation", "rotor_mass", "harmonic_disturbance"}));
+  EXPECT_EQ(effect_catalogue_of("amb1dof_voltage", "audit").size(), 11u);
+  // A name both families use has each family's scale: a coil of 210 ohm, not of 17.5.
+  EXPECT_EQ(
+      sim::effect_spec(effect_catalogue_of("maglev1coil_voltage", "audit"), "coil_resistance").parameters[0].scale,
+      10.0);
+}
+
 TEST(DiagnosticsFamilies, MissingPiecesAndUnknownFamiliesAreNamed) {
-  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::effect_catalogue),
-            "audit: plant model 'maglev1coil_voltage' has no effect catalogue yet");
   EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::fault_signatures),
             "audit: plant model 'maglev1coil_voltage' has no fault signatures (nor monitored parameters) yet");
   EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::effect_catalogue),

@@ -1,6 +1,6 @@
 // The single-coil maglev from the command line: `ambid sim --plant maglev1coil_voltage` writes a
 // rig-like record the reader accepts, `ambid identify --method greybox` finds the truth's
-// physical parameters in it, and what the family lacks is named.
+// physical parameters in it, and what the record lacks for an audit is named.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -51,7 +51,8 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
 
   r = run_ambid("audit " + stem + ".json --out " + (dir / "audit").string());
   EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("plant model 'maglev1coil_voltage' has no effect catalogue yet"));
+  // The rig's record has no controller in the contract's form and no r (w is not logged).
+  EXPECT_THAT(r.output, HasSubstr("the experiment has no controller, so the loop cannot be replayed"));
 }
 
 TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {

@@ -170,7 +170,7 @@ TEST(PlantFamilies, UnknownFamilyIsRefusedWithTheKnownOnes) {
   o.controller = "pid";
   o.excitation = "uniform";
   o.effects.push_back(make_effect("sensor_gain"));
-  EXPECT_THROW(simulate_scenario(o), Error);  // no effect catalogue yet
+  EXPECT_THROW(simulate_scenario(o), Error);  // the rig's errors are rig settings
 }
 
 }  // namespace
