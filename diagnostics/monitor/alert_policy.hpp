@@ -1,8 +1,13 @@
 #pragma once
 // When a monitored parameter is OK, WARN, ERROR or STALE, and the words of its alert.
-//   WARN   a drift, or a step smaller than error_fraction of the baseline
-//   ERROR  a step or drift of at least error_fraction, or a step alarm that persisted
-//          persist_windows windows
+//   WARN   a drift, or a step shown smaller than error_fraction of the baseline
+//   ERROR  a step or drift of at least error_fraction within error_margin standard errors of
+//          its level (|relative| + error_margin * relative_sigma >= error_fraction), or a step
+//          alarm that persisted persist_windows windows
+// The margin: a fault of exactly error_fraction is estimated below it half the time, and the
+// level of a step is the mean of the windows since it began: without a margin a +10 % fault
+// could stay a WARN until persist_windows had passed (at the stack's 0.5 s windows, 20 windows
+// are 10 s of plant time).
 //   STALE  no estimate of the parameter for longer than stale_timeout seconds
 // Within one episode (from leaving OK until back to OK) the level never falls from ERROR to
 // WARN, so an alert does not flap while a changed value hovers near error_fraction.
@@ -18,9 +23,11 @@ namespace ambid::diag {
 
 struct AlertPolicy {
   double error_fraction = 0.10;
+  double error_margin = 2.0;  // standard errors of the level
   std::size_t persist_windows = 100;
   double stale_timeout = 30.0;  // seconds
-  // Throws Error unless error_fraction > 0, persist_windows >= 1, stale_timeout > 0, finite.
+  // Throws Error unless error_fraction > 0, error_margin >= 0, persist_windows >= 1,
+  // stale_timeout > 0, all finite.
   void validate() const;
 
   // Level of a series that is not stale; `episode` is the highest level since it was last OK.
