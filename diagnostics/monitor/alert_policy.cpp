@@ -9,6 +9,8 @@
 namespace ambid::diag {
 namespace {
 
+constexpr double kErrorMargin = 2.0;  // standard errors of a level (alert_policy.hpp)
+
 // "20", "5.0", "0.4": whole percent from 10 % on, one decimal below.
 std::string percent(double fraction) {
   const double p = std::abs(fraction) * 100.0;
@@ -30,8 +32,6 @@ std::string seconds(double s) {
 void AlertPolicy::validate() const {
   if (!(error_fraction > 0.0) || !std::isfinite(error_fraction))
     throw Error("alert policy: error_fraction must be positive and finite, got " + std::to_string(error_fraction));
-  if (!(error_margin >= 0.0) || !std::isfinite(error_margin))
-    throw Error("alert policy: error_margin must be non-negative and finite, got " + std::to_string(error_margin));
   if (persist_windows < 1) throw Error("alert policy: persist_windows must be at least 1");
   if (!(stale_timeout > 0.0) || !std::isfinite(stale_timeout))
     throw Error("alert policy: stale_timeout must be positive and finite, got " + std::to_string(stale_timeout));
@@ -39,7 +39,7 @@ void AlertPolicy::validate() const {
 
 Level AlertPolicy::level(const SeriesStatus& status, Level episode) const {
   if (status.learning || status.change == Change::none) return Level::ok;
-  const bool large = std::abs(status.relative) + error_margin * status.relative_sigma >= error_fraction;
+  const bool large = std::abs(status.relative) + kErrorMargin * status.relative_sigma >= error_fraction;
   const bool persistent = status.change == Change::step && status.step_windows >= persist_windows;
   const Level now = large || persistent ? Level::error : Level::warn;
   return episode == Level::error ? Level::error : now;

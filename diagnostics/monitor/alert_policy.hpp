@@ -1,9 +1,9 @@
 #pragma once
 // When a monitored parameter is OK, WARN, ERROR or STALE, and the words of its alert.
 //   WARN   a drift, or a step shown smaller than error_fraction of the baseline
-//   ERROR  a step or drift of at least error_fraction within error_margin standard errors of
-//          its level (|relative| + error_margin * relative_sigma >= error_fraction), or a step
-//          alarm that persisted persist_windows windows
+//   ERROR  a step or drift of at least error_fraction within kErrorMargin (2) standard errors
+//          of its level (|relative| + 2 relative_sigma >= error_fraction), or a step alarm that
+//          persisted persist_windows windows
 // The margin: a fault of exactly error_fraction is estimated below it half the time, and the
 // level of a step is the mean of the windows since it began: without a margin a +10 % fault
 // could stay a WARN until persist_windows had passed (at the stack's 0.5 s windows, 20 windows
@@ -23,11 +23,9 @@ namespace ambid::diag {
 
 struct AlertPolicy {
   double error_fraction = 0.10;
-  double error_margin = 2.0;  // standard errors of the level
   std::size_t persist_windows = 100;
   double stale_timeout = 30.0;  // seconds
-  // Throws Error unless error_fraction > 0, error_margin >= 0, persist_windows >= 1,
-  // stale_timeout > 0, all finite.
+  // Throws Error unless error_fraction > 0, persist_windows >= 1, stale_timeout > 0, finite.
   void validate() const;
 
   // Level of a series that is not stale; `episode` is the highest level since it was last OK.
