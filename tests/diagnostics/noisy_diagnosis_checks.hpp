@@ -48,8 +48,8 @@ inline double fault_delay(const NominalRun& run, const std::string& controller, 
   const double value = 1.1 * sim::Amb1dofParameters::nominal().get(fault.parameter);
   const NoisyWindows w = noisy_windows(
       {controller, {{fault.parameter, value}}, kDiagnosisAmplitude, kRecordLength, seed}, kDiagnosisWindow, run.end);
-  const double delay = detection_delay(run.windows, run.baseline_windows, w.windows.windows, run.end, fault,
-                                       run.config, "noisy_" + controller + "_" + fault.parameter);
+  const double delay = detection_delay(run.windows, run.baseline_windows, w.windows.windows, run.end, fault, run.config,
+                                       "noisy_" + controller + "_" + fault.parameter);
   std::printf("[ detection ] %s %s +10 %%: ERROR %.2f s of plant time after the change\n", controller.c_str(),
               fault.parameter.c_str(), delay);
   ::testing::Test::RecordProperty(controller + "_" + fault.parameter + "_delay_s", std::to_string(delay));

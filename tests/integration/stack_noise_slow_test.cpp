@@ -36,9 +36,9 @@ double number_after(const std::string& text, const std::string& key, std::size_t
 // window, most of them at its iteration limit), the identifier and diagnostics daemons as
 // deploy/config.
 void configure_noisy_stack(const Stack& stack, double speed) {
-  std::ofstream(stack.dir() / "plant.json") << R"({"source": "sim", "target": ")" << scenarios
-                                            << R"(noisy-bearing.json", "batch_samples": 500, "speed": )" << speed
-                                            << "}";
+  std::ofstream(stack.dir() / "plant.json")
+      << R"({"source": "sim", "target": ")" << scenarios << R"(noisy-bearing.json", "batch_samples": 500, "speed": )"
+      << speed << "}";
   const std::filesystem::path deploy = std::filesystem::path(AMBID_SOURCE_DIR) / "deploy" / "config";
   std::ofstream(stack.dir() / "identifier.json") << std::ifstream(deploy / "identifier.json").rdbuf();
   std::ifstream diagnostics(deploy / "diagnostics.json");
