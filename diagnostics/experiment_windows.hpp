@@ -2,11 +2,17 @@
 // Cuts one recorded experiment into consecutive windows, each a complete experiment of its
 // own that can be identified on its own: the diagnostics watch parameters window by window,
 // and the scatter of the windows of the baseline experiments is what the baseline learns.
+// identify_experiment_windows is what `ambid diagnose` does with each experiment it is given.
+#include <cstddef>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "core/experiment.hpp"
+#include "diagnostics/estimate.hpp"
+#include "identifier/identify_window.hpp"
 
 namespace ambid::diag {
 
@@ -18,5 +24,37 @@ namespace ambid::diag {
 // Throws Error when window_samples < 2 or exceeds the record, when the experiment has no
 // controller (it is needed to know its state), or when a controller input is not a signal.
 std::vector<Experiment> split_experiment(const Experiment& experiment, Eigen::Index window_samples);
+
+// Samples dropped from the first window of a record (it starts at the nominal operating point
+// and settles to the plant's own); later windows carry the controller state. deadbeat drops
+// none (its offset term absorbs the shift).
+inline constexpr Eigen::Index kSettlingSamples = 1000;
+
+struct SkippedWindow {
+  std::size_t window = 0;  // 1-based within its experiment
+  double time = 0.0;       // the window's end
+  ident::WindowFailure failure;
+};
+
+struct ExperimentWindows {
+  std::vector<EstimateWindow> windows;
+  std::vector<SkippedWindow> skipped;
+  double time_to = 0.0;  // end of the last window, identified or skipped
+};
+
+struct WindowCallbacks {
+  std::function<void(std::size_t done, std::size_t total)> progress;             // before each window
+  std::function<void(const SkippedWindow& skipped, std::size_t total)> skipped;  // after a skipped one
+};
+
+// Every window of `experiment` (split_experiment, `window_samples` each) identified by
+// `method` (ident::identify_window, kSettlingSamples dropped from the first), stamped with the
+// window's end on a clock where the experiment starts at `start`. A window that cannot be
+// identified is skipped with its reason (ident::window_failure), never the end of the run.
+// Throws Error when the method cannot use the experiment at all (ident::require_method_inputs)
+// and what split_experiment throws.
+ExperimentWindows identify_experiment_windows(const Experiment& experiment, Eigen::Index window_samples,
+                                              const std::string& method, double start, const std::string& plant_id,
+                                              Source source, const WindowCallbacks& callbacks = {});
 
 }  // namespace ambid::diag

@@ -9,6 +9,8 @@
 namespace ambid::diag {
 namespace {
 
+constexpr double kErrorMargin = 2.0;  // standard errors of a level (alert_policy.hpp)
+
 // "20", "5.0", "0.4": whole percent from 10 % on, one decimal below.
 std::string percent(double fraction) {
   const double p = std::abs(fraction) * 100.0;
@@ -37,7 +39,7 @@ void AlertPolicy::validate() const {
 
 Level AlertPolicy::level(const SeriesStatus& status, Level episode) const {
   if (status.learning || status.change == Change::none) return Level::ok;
-  const bool large = std::abs(status.relative) >= error_fraction;
+  const bool large = std::abs(status.relative) + kErrorMargin * status.relative_sigma >= error_fraction;
   const bool persistent = status.change == Change::step && status.step_windows >= persist_windows;
   const Level now = large || persistent ? Level::error : Level::warn;
   return episode == Level::error ? Level::error : now;

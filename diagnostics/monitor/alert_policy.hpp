@@ -1,8 +1,13 @@
 #pragma once
 // When a monitored parameter is OK, WARN, ERROR or STALE, and the words of its alert.
-//   WARN   a drift, or a step smaller than error_fraction of the baseline
-//   ERROR  a step or drift of at least error_fraction, or a step alarm that persisted
-//          persist_windows windows
+//   WARN   a drift, or a step shown smaller than error_fraction of the baseline
+//   ERROR  a step or drift of at least error_fraction within kErrorMargin (2) standard errors
+//          of its level (|relative| + 2 relative_sigma >= error_fraction), or a step alarm that
+//          persisted persist_windows windows
+// The margin: a fault of exactly error_fraction is estimated below it half the time, and the
+// level of a step is the mean of the windows since it began: without a margin a +10 % fault
+// could stay a WARN until persist_windows had passed (at the stack's 0.5 s windows, 20 windows
+// are 10 s of plant time).
 //   STALE  no estimate of the parameter for longer than stale_timeout seconds
 // Within one episode (from leaving OK until back to OK) the level never falls from ERROR to
 // WARN, so an alert does not flap while a changed value hovers near error_fraction.

@@ -41,7 +41,7 @@ void Baseline::validate() const {
   require_spread(reported_sigma, "reported sigma");
 }
 
-double Baseline::sigma_eff(double sigma) const { return std::hypot(sigma, extra_spread); }
+double Baseline::sigma_eff(double sigma) const { return std::hypot(std::max(sigma, reported_sigma), extra_spread); }
 
 Baseline given_baseline(double mean, double extra_spread) {
   Baseline b;

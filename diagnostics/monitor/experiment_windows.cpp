@@ -3,6 +3,8 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "diagnostics/identified_estimates.hpp"
+#include "identifier/identify_experiment.hpp"
 
 namespace ambid::diag {
 
@@ -32,6 +34,28 @@ std::vector<Experiment> split_experiment(const Experiment& experiment, Eigen::In
     for (Eigen::Index s = first; s < first + window_samples; ++s) state = k.A * state + k.B * v.row(s).transpose();
   }
   return windows;
+}
+
+ExperimentWindows identify_experiment_windows(const Experiment& experiment, Eigen::Index window_samples,
+                                              const std::string& method, double start, const std::string& plant_id,
+                                              Source source, const WindowCallbacks& callbacks) {
+  ident::IdentifyOptions options = ident::window_identify_options(method);
+  ident::require_method_inputs(experiment, method);
+  const std::vector<Experiment> parts = split_experiment(experiment, window_samples);
+  ExperimentWindows out;
+  out.time_to = start;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    if (callbacks.progress) callbacks.progress(i, parts.size());
+    out.time_to = start + double(i + 1) * double(window_samples) * experiment.sample_time;
+    options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
+    try {
+      out.windows.push_back(estimate_window(ident::identify_window(parts[i], options), out.time_to, plant_id, source));
+    } catch (const Error& err) {
+      out.skipped.push_back({i + 1, out.time_to, ident::window_failure(err)});
+      if (callbacks.skipped) callbacks.skipped(out.skipped.back(), parts.size());
+    }
+  }
+  return out;
 }
 
 }  // namespace ambid::diag

@@ -1,10 +1,8 @@
 // `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
-// Each experiment is cut into windows (diagnostics/experiment_windows.hpp) and every window is
-// identified (identifier/identify_window.hpp, method pem by default: consistent at real sensor
-// noise and off nominal, with sigmas; the baseline's learned window-to-window scatter widens
-// them where they fall short; deadbeat is biased off nominal). The first
-// window of each experiment skips kSettlingSamples (a record starts at the nominal operating
-// point and settles to the plant's own); later windows carry the controller state. A model
+// Each experiment is cut into windows and every window is identified
+// (diagnostics/experiment_windows.hpp identify_experiment_windows; method pem by default:
+// consistent at real sensor noise and off nominal, with sigmas; the baseline's learned
+// window-to-window scatter widens them where they fall short; deadbeat is biased off nominal). A model
 // file is one window. Fault isolation uses the closed-loop signatures of the first
 // experiment's plant and controller (diagnostics/fault_signatures.hpp). The windows of the
 // first N inputs form the baseline, learned by the
@@ -43,7 +41,6 @@
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
 #include "diagnostics/plant_families.hpp"
-#include "identifier/identify_experiment.hpp"
 #include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
@@ -55,8 +52,7 @@
 namespace ambid::cli {
 namespace {
 
-constexpr double kModelDuration = 1.0;           // s a model file occupies on the time axis
-constexpr Eigen::Index kSettlingSamples = 1000;  // dropped from the first window of a record
+constexpr double kModelDuration = 1.0;  // s a model file occupies on the time axis
 
 struct DiagnoseArguments {
   std::vector<std::string> inputs;
@@ -68,11 +64,7 @@ struct DiagnoseArguments {
   bool quiet = false;  // no progress line on stderr
 };
 
-struct Skipped {
-  std::size_t window = 0;  // 1-based within its input
-  double time = 0.0;       // the window's end
-  ident::WindowFailure failure;
-};
+using Skipped = diag::SkippedWindow;
 
 struct Input {
   std::string file;
@@ -84,9 +76,8 @@ struct Input {
   Eigen::Index clamped_samples = 0;  // samples where a controller clamp acted (not exogenous)
 };
 
-void report_skipped(const Input& in, std::size_t windows) {
-  const Skipped& s = in.skipped.back();
-  std::cerr << "ambid diagnose: " << in.file << ": window " << s.window << " of " << windows << " (to t = " << s.time
+void report_skipped(const std::string& file, const Skipped& s, std::size_t windows) {
+  std::cerr << "ambid diagnose: " << file << ": window " << s.window << " of " << windows << " (to t = " << s.time
             << " s) skipped, not identified (" << s.failure.reason << "): " << s.failure.message << "\n";
 }
 
@@ -114,7 +105,7 @@ Input model_input(const std::string& file, double start, const std::string& plan
         {1, in.time_to,
          ident::window_failure(NoContinuousEquivalent("the model has no continuous part, so no physical parameters (" +
                                                       m.no_continuous + ")"))});
-    report_skipped(in, 1);
+    report_skipped(in.file, in.skipped.back(), 1);
     return in;
   }
   try {
@@ -127,7 +118,6 @@ Input model_input(const std::string& file, double start, const std::string& plan
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
                        const std::string& plant_id, Progress& progress) {
-  ident::IdentifyOptions options = ident::window_identify_options(method);
   const ReadResult read = read_experiment(file);
   const Experiment& e = read.experiment;
   try {
@@ -137,36 +127,29 @@ Input experiment_input(const std::string& file, double start, double window, con
   }
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
-  // What no window of this record could get past is an error of the input, not of a window.
-  try {
-    ident::require_method_inputs(e, method);
-  } catch (const Error& err) {
-    throw Error(file + ": " + err.what());
-  }
   Input in{file, "experiment", {}, {}, start, e, read.clamped_samples};
   in.loop->t.resize(0);
   in.loop->y.resize(0, 0);
   in.loop->u.resize(0, 0);
   in.loop->r.resize(0, 0);
-  std::vector<Experiment> parts;
+  diag::WindowCallbacks callbacks;
+  callbacks.progress = [&](std::size_t done, std::size_t total) {
+    progress.update("identify the windows of " + file, done, total);
+  };
+  callbacks.skipped = [&](const Skipped& s, std::size_t total) {
+    progress.clear();
+    report_skipped(file, s, total);
+  };
+  diag::ExperimentWindows identified;
   try {
-    parts = diag::split_experiment(e, samples);
-  } catch (const Error& err) {
+    identified =
+        diag::identify_experiment_windows(e, samples, method, start, plant_id, diag::Source::replay, callbacks);
+  } catch (const Error& err) {  // what no window of this record could get past is an error of the input
     throw Error(file + " (" + std::to_string(length) + " s): " + err.what());
   }
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    progress.update("identify the windows of " + file, i, parts.size());
-    in.time_to = start + double(i + 1) * double(samples) * e.sample_time;
-    options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
-    try {
-      in.windows.push_back(
-          diag::estimate_window(ident::identify_window(parts[i], options), in.time_to, plant_id, diag::Source::replay));
-    } catch (const Error& err) {
-      in.skipped.push_back({i + 1, in.time_to, ident::window_failure(err)});
-      progress.clear();
-      report_skipped(in, parts.size());
-    }
-  }
+  in.windows = std::move(identified.windows);
+  in.skipped = std::move(identified.skipped);
+  in.time_to = identified.time_to;
   return in;
 }
 

@@ -33,6 +33,9 @@ sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
   s.seed = o.seed;
   if (excited) {
     s.amplitude = o.amplitude;
+    s.excitation = o.excitation;
+    s.f_min = o.f_min;
+    s.f_max = o.f_max;
     s.position_noise = o.position_noise;
     s.current_noise = o.current_noise;
   } else {

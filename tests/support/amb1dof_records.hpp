@@ -34,7 +34,9 @@ const std::vector<std::string>& amb1dof_record_controllers();
 struct Amb1dofRecordOptions {
   std::string controller = "lqr";
   std::map<std::string, double> true_parameters;  // overrides of the nominal parameters (e.g. R1)
-  double amplitude = 1.0;                         // PRBS on each input (V)
+  double amplitude = 1.0;                         // PRBS on each input (V); rms for multisine
+  std::string excitation = "prbs";                // or multisine (band f_min..f_max, plant_sim/scenario.hpp)
+  double f_min = 1.0, f_max = 1000.0;             // Hz
   double duration = 2.0;                          // s, after the settling
   double settle = 0.5;                            // s of settling at the start of the record
   double position_noise = 0.0;                    // m rms on x
