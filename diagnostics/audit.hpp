@@ -17,8 +17,16 @@
 // Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
 // correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
 //
-// audit.json has the contract's keys exactly, plus these additive ones: per finding
-// "significance" {z, p_value, nrmse2_reduction}; "acceptance" {rule,
+// audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
+// order accepted, empty unless cause is a catalogue effect; "finding" the index into
+// "findings"), plus these additive ones: per finding "round" (1-based search round; later
+// rounds are fitted on top of the effects taken before), "significant", "accepted",
+// "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below); the
+// nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
+// cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
+// excited_bins, p_value, consistent, outputs: {"y": {coherence_mean, coherence_z,
+// coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
+// expected under noise); "acceptance" also has residual_rule and residual_alpha; "acceptance" {rule,
 // false_acceptance_probability, z_threshold}; "frf_ratio" {estimator, segment, lines,
 // nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
 // segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
@@ -35,6 +43,7 @@
 #include "diagnostics/audit/audit_fit.hpp"
 #include "diagnostics/audit/audit_frf.hpp"
 #include "diagnostics/audit/audit_replay.hpp"
+#include "diagnostics/audit/audit_residual_check.hpp"
 #include "diagnostics/audit/audit_significance.hpp"
 #include "diagnostics/audit/audit_spectrum.hpp"
 #include "plant_sim/effects.hpp"
@@ -47,6 +56,8 @@ struct AuditOptions {
   double complexity_penalty = 0.02;     // relative score penalty per fitted parameter (ranking)
   double false_acceptance = 0.01;       // P(a cause is named | the nominal model is right)
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
+  double residual_alpha = 0.01;         // P(the residual check rejects a right model)
+  int max_effects = 3;                  // effects accepted at most (sequentially), 1 to 3
   FitOptions fit;
 };
 
@@ -55,7 +66,11 @@ struct AuditFinding {
   Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
   double score = 0.0;    // nrmse_total_after with the complexity penalty
-  ImprovementTest test;  // validation improvement against noise
+  ImprovementTest test;  // validation improvement against noise (against the previous round's model)
+  double z_threshold = 0.0;  // the z this finding needed (Bonferroni over its round)
+  bool significant = false;  // z above the threshold, reduction > 0, nrmse_total lowered
+  ResidualCheck residual;    // the extended model's validation residual against noise
+  int round = 1;             // search round: fitted on top of the effects taken in earlier rounds
   bool accepted = false;
   std::string evidence;
 };
@@ -65,9 +80,12 @@ struct AuditResult {
   Eigen::VectorXd baseline_nrmse;      // nominal model, validation segment
   double baseline_total = 0.0;         // mean of the per-output NRMSE
   std::vector<AuditFinding> findings;  // fitted candidates, best score first
-  std::string cause = "none";
+  std::string cause = "none";      // the first of `causes`, "none" or "unexplained"
+  std::vector<std::string> causes;  // every accepted effect in the order accepted
   double false_acceptance = 0.0;  // AuditOptions::false_acceptance
-  double z_threshold = 0.0;       // the z a finding needed to be accepted
+  double z_threshold = 0.0;       // the z a finding of the first round needed to be accepted
+  double residual_alpha = 0.0;    // AuditOptions::residual_alpha
+  ResidualCheck nominal_check;    // the nominal model's validation residual against noise
   Segment estimation, validation;
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
@@ -81,7 +99,8 @@ struct AuditResult {
   AuditFrfs frfs;
   // Whether the nominal residual depends on the excitation amplitude (whole record).
   AmplitudeDependence amplitude;
-  std::vector<sim::Effect> extended_effects;  // the accepted effect, or empty
+  std::vector<sim::Effect> extended_effects;     // the accepted effects in order, or empty
+  std::vector<sim::Effect> unexplained_effects;  // taken provisionally when cause is unexplained
 };
 
 // Error/InsufficientData when the experiment cannot be audited (no controller, no
@@ -91,7 +110,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options = 
 // audit.json exactly as the contract has it.
 nlohmann::json audit_json(const AuditResult& result, const std::string& experiment_file,
                           const std::string& extended_model_file);
-// The extended model: nominal parameters plus the accepted effect(s) and their fit.
+// The extended model: nominal parameters plus the accepted effects (in order) and their fit.
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& result);
 
 }  // namespace ambid::diag

@@ -27,7 +27,7 @@ struct EffectSpec {
   std::string summary;
 };
 
-// The eleven effects in vocabulary order.
+// The twelve effects in vocabulary order.
 const std::vector<EffectSpec>& effect_catalogue();
 std::vector<std::string> effect_names();
 // Error listing the valid names for an unknown one.

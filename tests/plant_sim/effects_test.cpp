@@ -44,7 +44,7 @@ TEST(EffectCatalogue, VocabularyOfTheContract) {
   EXPECT_EQ(effect_names(),
             (std::vector<std::string>{"coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current",
                                       "sensor_delay", "sensor_gain", "flexible_mode", "magnetic_saturation", "air_gap",
-                                      "rotor_mass", "harmonic_disturbance"}));
+                                      "rotor_mass", "harmonic_disturbance", "force_factor"}));
   for (const auto& spec : effect_catalogue()) {
     EXPECT_TRUE(make_effect(spec.name).neutral()) << spec.name;
     EXPECT_EQ(make_effect(spec.name).channel, spec.has_channel ? 1 : 0);
