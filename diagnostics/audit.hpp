@@ -9,11 +9,35 @@
 // validation part (the rest). Every candidate (each effect; channel effects once per channel)
 // is screened at +-1 and +-0.3 times its typical size, the best `fitted_candidates` are fitted on the
 // estimation part (audit_fit.hpp) and scored on the validation part: score = validation
-// nrmse_total * (1 + complexity_penalty * parameters) ranks them. The best candidate becomes
-// the cause only when its validation improvement is beyond what noise explains
-// (audit_significance.hpp: z above the Bonferroni threshold for `false_acceptance` over the
-// fitted candidates) and it lowers nrmse_total; otherwise cause = "none". On data where the
-// nominal model is right a cause is named with probability at most `false_acceptance`.
+// nrmse_total * (1 + complexity_penalty * parameters) ranks them. A candidate is significant
+// when its validation improvement is beyond what noise explains (audit_significance.hpp: z
+// above the Bonferroni threshold for `false_acceptance` over the fitted candidates) and it
+// lowers nrmse_total.
+//
+// Residual check (audit_residual_check.hpp): the validation residual of a model is consistent
+// with noise when, per output, the sum over the excited bins of its multiple coherence with r
+// (non-overlapping Hann windows, K of them, p excitations) is within the upper tail of its
+// null law (Beta(p, K - p) per bin, a scaled chi-square for the sum). Coherence is the r-driven
+// part of the residual spectrum against the residual's own incoherent floor, bin by bin, so it
+// is invariant to the level and colour of the closed-loop noise: nothing is assumed of the
+// generator. Bonferroni over the q outputs: a right model is rejected with probability at most
+// `residual_alpha` (1 %; measured in tests/diagnostics/audit_residual_check_test.cpp and
+// audit_acceptance_slow_test.cpp). It does not see a residual offset or drift (removed per
+// window) nor structure not coherent with r.
+//
+// Acceptance is sequential (forward selection), up to `max_effects` (3): each round takes the
+// significant finding of largest z (the strongest evidence against noise; listed first in its
+// round; the validation NRMSE, which an offset of the bias currents dominates, told the
+// channels apart less well on independent records), and the next round searches the remaining
+// effects on top of the effects taken (same screening, fit, significance test against the previous extended
+// model, residual check). The search ends when no candidate of a round is significant. Then
+// cause = the first effect taken and `causes` all of them in order when the last extended
+// model passes the residual check; "unexplained" when it does not, or when nothing is
+// significant but the nominal residual fails the check; "none" when nothing is significant and
+// the nominal residual passes. On data where the nominal model is right a catalogue cause is
+// named with probability at most `false_acceptance` and "unexplained" with at most
+// `residual_alpha`; with one right effect, a false second one is added with probability at
+// most `false_acceptance`.
 // Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
 // correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
 //
@@ -26,8 +50,8 @@
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
 // excited_bins, p_value, consistent, outputs: {"y": {coherence_mean, coherence_z,
 // coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
-// expected under noise); "acceptance" also has residual_rule and residual_alpha; "acceptance" {rule,
-// false_acceptance_probability, z_threshold}; "frf_ratio" {estimator, segment, lines,
+// expected under noise); "acceptance" {rule, false_acceptance_probability, z_threshold,
+// residual_rule, residual_alpha}; "frf_ratio" {estimator, segment, lines,
 // nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
 // segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
 // "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,

@@ -202,23 +202,26 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
                                    r_dev.middleRows(r.validation.begin, r.validation.size()),
                                    options.residual_alpha);
 
-  // Sequential acceptance: each round searches on top of the effects taken so far and takes
-  // the best-scoring significant finding whose residual is consistent with noise, or, when
-  // none is, the best significant one provisionally and searches again.
+  // Sequential acceptance (forward selection): each round searches on top of the effects taken
+  // so far and takes the significant finding of largest z; the search goes on while a round
+  // finds a significant improvement. The residual check judges the last model.
   std::vector<sim::Effect> taken;
   std::vector<std::size_t> taken_findings;
   ReplayedLoop current = nominal;
   double current_total = r.baseline_total;
   ResidualCheck current_check = r.nominal_check;
   for (int round = 1; round <= options.max_effects; ++round) {
-    if (round > 1 && current_check.consistent) break;
     std::vector<Scored> scored = search_round(measured, r, taken, current, current_total, round, options);
     if (round == 1) r.z_threshold = scored.empty() ? acceptance_threshold(options.false_acceptance, 1)
                                                    : scored.front().finding.z_threshold;
-    auto pick = std::find_if(scored.begin(), scored.end(),
-                             [](const Scored& s) { return s.finding.significant && s.finding.residual.consistent; });
-    if (pick == scored.end())
-      pick = std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+    // The strongest evidence against noise: the significant finding of largest z, put first.
+    auto pick = scored.end();
+    for (auto it = scored.begin(); it != scored.end(); ++it)
+      if (it->finding.significant && (pick == scored.end() || it->finding.test.z > pick->finding.test.z)) pick = it;
+    if (pick != scored.end()) {
+      std::rotate(scored.begin(), pick, pick + 1);
+      pick = scored.begin();
+    }
     const std::size_t offset = r.findings.size();
     for (auto& s : scored) r.findings.push_back(s.finding);
     if (pick == scored.end()) break;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 
 #include "core/error.hpp"
 
@@ -73,29 +74,52 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
   std::vector<Eigen::Index> excited;
   for (Eigen::Index b = 2; b < bins; b += 2)
     if (r_power[b] >= 0.01 * r_power.segment(1, bins - 1).maxCoeff()) excited.push_back(b);
-  c.bins = Eigen::Index(excited.size());
-  const double B = double(excited.size()), Kd = double(K), pd = double(p);
+  const double Kd = double(K);
 
+  // Per excited bin: the excitations' cross-spectrum, its rank (a multisine can give both
+  // excitations the same line in a bin: rank 1) and pseudo-inverse.
+  struct Bin {
+    Eigen::Index b;
+    Eigen::MatrixXcd Srr_pinv;
+    double rank;
+  };
+  std::vector<Bin> used;
+  for (Eigen::Index b : excited) {
+    Eigen::MatrixXcd Srr = Eigen::MatrixXcd::Zero(p, p);
+    for (const auto& s : spectra) {
+      const Eigen::VectorXcd rb = s.block(b, q, 1, p).transpose();
+      Srr += rb * rb.adjoint();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(Srr);
+    const double largest = eig.eigenvalues().maxCoeff();
+    Eigen::MatrixXcd pinv = Eigen::MatrixXcd::Zero(p, p);
+    double rank = 0.0;
+    for (Eigen::Index k = 0; k < p; ++k)
+      if (eig.eigenvalues()[k] > 1e-6 * largest) {
+        pinv += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).adjoint() / eig.eigenvalues()[k];
+        rank += 1.0;
+      }
+    if (rank > 0.0 && rank < Kd) used.push_back({b, pinv, rank});
+  }
+  c.bins = Eigen::Index(used.size());
   for (Eigen::Index j = 0; j < q; ++j) {
-    double sum = 0.0;
-    for (Eigen::Index b : excited) {
-      Eigen::MatrixXcd Srr = Eigen::MatrixXcd::Zero(p, p);
+    double sum = 0.0, mean = 0.0, variance = 0.0;
+    for (const Bin& bin : used) {
       Eigen::VectorXcd Sre = Eigen::VectorXcd::Zero(p);
       double See = 0.0;
       for (const auto& s : spectra) {
-        const Eigen::VectorXcd rb = s.block(b, q, 1, p).transpose();
-        const std::complex<double> eb = s(b, j);
-        Srr += rb * rb.adjoint();
-        Sre += rb * std::conj(eb);
+        const std::complex<double> eb = s(bin.b, j);
+        Sre += s.block(bin.b, q, 1, p).transpose() * std::conj(eb);
         See += std::norm(eb);
       }
       if (!(See > 0.0)) continue;
-      const std::complex<double> explained = Sre.dot(Srr.ldlt().solve(Sre));  // Sre^H Srr^-1 Sre
-      sum += std::clamp(explained.real() / See, 0.0, 1.0);
+      // Sre^H Srr^+ Sre / See ~ Beta(rank, K - rank) under noise independent of r.
+      sum += std::clamp(Sre.dot(bin.Srr_pinv * Sre).real() / See, 0.0, 1.0);
+      mean += bin.rank / Kd;
+      variance += bin.rank * (Kd - bin.rank) / (Kd * Kd * (Kd + 1.0));
     }
-    if (B > 0) {
-      const double mean = B * pd / Kd, variance = B * pd * (Kd - pd) / (Kd * Kd * (Kd + 1.0));
-      c.coherence_mean[j] = sum / B;
+    if (mean > 0.0) {
+      c.coherence_mean[j] = sum / double(used.size());
       c.coherence_z[j] = scaled_chi_square_z(sum, mean, variance);
       c.coherence_p[j] = normal_upper_tail(c.coherence_z[j]);
     }

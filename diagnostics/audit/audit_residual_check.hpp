@@ -11,9 +11,10 @@
 // bin b where r has power (>= 1 % of its strongest bin). C_b is the part of the residual
 // spectrum coherent with r over its whole power, the rest being the incoherent noise floor,
 // bin by bin, so it needs no noise level. When the residual is noise independent of r,
-// C_b ~ Beta(p, K - p) (Gaussian residual, independent windows; bins two apart under Hann are
-// nearly independent), and T = sum_b C_b has mean B p / K and variance B p (K - p) / (K^2
-// (K + 1)); its upper tail is taken from a scaled chi-square with those moments
+// C_b ~ Beta(p_b, K - p_b) (Gaussian residual, independent windows; bins two apart under
+// Hann are nearly independent; p_b the rank of the excitations' cross-spectrum in the bin,
+// which a multisine with the same line in both excitations makes 1), and T = sum_b C_b has
+// mean sum p_b / K and variance sum p_b (K - p_b) / (K^2 (K + 1)); its upper tail is taken from a scaled chi-square with those moments
 // (Wilson-Hilferty). Unmodelled structure driven by r (a wrong plant) raises C_b over the
 // excited band. The residual is consistent with noise when the smallest of the q p-values is
 // at least alpha / q (Bonferroni): a right model is rejected with probability at most alpha.
@@ -29,8 +30,8 @@ namespace ambid::diag {
 struct ResidualCheck {
   bool determinable = false;  // the segment held at least kMinWindows windows
   std::string reason;         // why not, when not determinable
-  Eigen::Index window = 0, windows = 0, bins = 0;  // L, K, excited bins B
-  // Per output: mean multiple coherence with r over the excited bins (H0 mean p / K), its z
+  Eigen::Index window = 0, windows = 0, bins = 0;  // L, K, excited bins used
+  // Per output: mean multiple coherence with r over the excited bins (H0 mean p_b / K), its z
   // and one-sided p-value.
   Eigen::VectorXd coherence_mean, coherence_z, coherence_p;
   double p_value = 1.0;     // smallest p-value times q (at most 1)

@@ -4,7 +4,7 @@
 // plant's own stepper for catalogue effects alone, a generic one beyond them),
 // under a PID or another LQR than the replay's default scenario, sensor noise 0.1 um on x and
 // 1 mA on the currents (white, or coloured on x: a first-order lag of 0.3 ms), a small process
-// force noise, PRBS of 1 V. Besides the catalogue's effects (Amb1dofExtended inside), the truth
+// force noise (5 mN), a multisine of 1 V rms from 2 to 800 Hz. Besides the catalogue's effects (Amb1dofExtended inside), the truth
 // can hold mismatches the catalogue has no name for: a second flexible mode, a slowly varying
 // amplifier gain. Clean records come from tests/support/amb1dof_records (another generator).
 #include <cstdint>
