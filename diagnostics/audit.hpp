@@ -89,8 +89,8 @@ struct AuditFinding {
   sim::Effect effect;           // fitted; channel 0 means none (null in audit.json)
   Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
-  double score = 0.0;    // nrmse_total_after with the complexity penalty
-  ImprovementTest test;  // validation improvement against noise (against the previous round's model)
+  double score = 0.0;        // nrmse_total_after with the complexity penalty
+  ImprovementTest test;      // validation improvement against noise (against the previous round's model)
   double z_threshold = 0.0;  // the z this finding needed (Bonferroni over its round)
   bool significant = false;  // z above the threshold, reduction > 0, nrmse_total lowered
   ResidualCheck residual;    // the extended model's validation residual against noise
@@ -103,13 +103,13 @@ struct AuditResult {
   std::vector<std::string> outputs, inputs;
   Eigen::VectorXd baseline_nrmse;      // nominal model, validation segment
   double baseline_total = 0.0;         // mean of the per-output NRMSE
-  std::vector<AuditFinding> findings;  // fitted candidates, best score first
-  std::string cause = "none";      // the first of `causes`, "none" or "unexplained"
-  std::vector<std::string> causes;  // every accepted effect in the order accepted
-  double false_acceptance = 0.0;  // AuditOptions::false_acceptance
-  double z_threshold = 0.0;       // the z a finding of the first round needed to be accepted
-  double residual_alpha = 0.0;    // AuditOptions::residual_alpha
-  ResidualCheck nominal_check;    // the nominal model's validation residual against noise
+  std::vector<AuditFinding> findings;  // fitted candidates by round; in each, the one taken first, then by score
+  std::string cause = "none";          // the first of `causes`, "none" or "unexplained"
+  std::vector<std::string> causes;     // every accepted effect in the order accepted
+  double false_acceptance = 0.0;       // AuditOptions::false_acceptance
+  double z_threshold = 0.0;            // the z a finding of the first round needed to be accepted
+  double residual_alpha = 0.0;         // AuditOptions::residual_alpha
+  ResidualCheck nominal_check;         // the nominal model's validation residual against noise
   Segment estimation, validation;
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation

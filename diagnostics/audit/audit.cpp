@@ -153,8 +153,8 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   const double threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(scored.size())));
   for (auto& s : scored) {
     s.finding.z_threshold = threshold;
-    s.finding.significant = s.finding.test.reduction > 0.0 && s.finding.test.z > threshold &&
-                            s.finding.nrmse_total_after < base_total;
+    s.finding.significant =
+        s.finding.test.reduction > 0.0 && s.finding.test.z > threshold && s.finding.nrmse_total_after < base_total;
   }
   return scored;
 }
@@ -199,8 +199,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.false_acceptance = options.false_acceptance;
   r.residual_alpha = options.residual_alpha;
   r.nominal_check = residual_check(residual.middleRows(r.validation.begin, r.validation.size()),
-                                   r_dev.middleRows(r.validation.begin, r.validation.size()),
-                                   options.residual_alpha);
+                                   r_dev.middleRows(r.validation.begin, r.validation.size()), options.residual_alpha);
 
   // Sequential acceptance (forward selection): each round searches on top of the effects taken
   // so far and takes the significant finding of largest z; the search goes on while a round
@@ -212,8 +211,9 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   ResidualCheck current_check = r.nominal_check;
   for (int round = 1; round <= options.max_effects; ++round) {
     std::vector<Scored> scored = search_round(measured, r, taken, current, current_total, round, options);
-    if (round == 1) r.z_threshold = scored.empty() ? acceptance_threshold(options.false_acceptance, 1)
-                                                   : scored.front().finding.z_threshold;
+    if (round == 1)
+      r.z_threshold =
+          scored.empty() ? acceptance_threshold(options.false_acceptance, 1) : scored.front().finding.z_threshold;
     // The strongest evidence against noise: the significant finding of largest z, put first.
     auto pick = scored.end();
     for (auto it = scored.begin(); it != scored.end(); ++it)
@@ -282,9 +282,9 @@ nlohmann::json check_json(const ResidualCheck& c, const AuditResult& r) {
     outputs[r.outputs[j]] = {
         {"coherence_mean", c.coherence_mean[i]}, {"coherence_z", c.coherence_z[i]}, {"coherence_p", c.coherence_p[i]}};
   }
-  nlohmann::json j = {{"determinable", c.determinable}, {"window", c.window},     {"windows", c.windows},
-                      {"excited_bins", c.bins},         {"p_value", c.p_value},   {"consistent", c.consistent},
-                      {"outputs", outputs}};
+  nlohmann::json j = {
+      {"determinable", c.determinable}, {"window", c.window},         {"windows", c.windows}, {"excited_bins", c.bins},
+      {"p_value", c.p_value},           {"consistent", c.consistent}, {"outputs", outputs}};
   if (!c.determinable) j["reason"] = c.reason;
   return j;
 }
@@ -306,22 +306,21 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
   };
   nlohmann::json findings = nlohmann::json::array();
   for (const auto& f : r.findings)
-    findings.push_back(
-        {{"effect", f.effect.name},
-         {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
-         {"parameters", f.effect.parameters},
-         {"nrmse_total_before", f.nrmse_total_before},
-         {"nrmse_total_after", f.nrmse_total_after},
-         {"evidence", f.evidence},
-         {"round", f.round},
-         {"significant", f.significant},
-         {"accepted", f.accepted},
-         {"significance",
-          {{"z", f.test.z},
-           {"p_value", f.test.p_value},
-           {"nrmse2_reduction", f.test.reduction},
-           {"z_threshold", f.z_threshold}}},
-         {"residual_check", check_json(f.residual, r)}});
+    findings.push_back({{"effect", f.effect.name},
+                        {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
+                        {"parameters", f.effect.parameters},
+                        {"nrmse_total_before", f.nrmse_total_before},
+                        {"nrmse_total_after", f.nrmse_total_after},
+                        {"evidence", f.evidence},
+                        {"round", f.round},
+                        {"significant", f.significant},
+                        {"accepted", f.accepted},
+                        {"significance",
+                         {{"z", f.test.z},
+                          {"p_value", f.test.p_value},
+                          {"nrmse2_reduction", f.test.reduction},
+                          {"z_threshold", f.z_threshold}}},
+                        {"residual_check", check_json(f.residual, r)}});
   nlohmann::json causes = nlohmann::json::array();
   for (std::size_t i = 0; i < r.findings.size(); ++i)
     if (r.findings[i].accepted) {

@@ -14,12 +14,11 @@
 // C_b ~ Beta(p_b, K - p_b) (Gaussian residual, independent windows; bins two apart under
 // Hann are nearly independent; p_b the rank of the excitations' cross-spectrum in the bin,
 // which a multisine with the same line in both excitations makes 1), and T = sum_b C_b has
-// mean sum p_b / K and variance sum p_b (K - p_b) / (K^2 (K + 1)); its upper tail is taken from a scaled chi-square with those moments
-// (Wilson-Hilferty). Unmodelled structure driven by r (a wrong plant) raises C_b over the
-// excited band. The residual is consistent with noise when the smallest of the q p-values is
-// at least alpha / q (Bonferroni): a right model is rejected with probability at most alpha.
-// Not covered: structure not coherent with r (a periodic force is the catalogue's
-// harmonic_disturbance; a spectral-line test against neighbouring bins was tried and rejected
+// mean sum p_b / K and variance sum p_b (K - p_b) / (K^2 (K + 1)); its upper tail is taken from a scaled chi-square
+// with those moments (Wilson-Hilferty). Unmodelled structure driven by r (a wrong plant) raises C_b over the excited
+// band. The residual is consistent with noise when the smallest of the q p-values is at least alpha / q (Bonferroni): a
+// right model is rejected with probability at most alpha. Not covered: structure not coherent with r (a periodic force
+// is the catalogue's harmonic_disturbance; a spectral-line test against neighbouring bins was tried and rejected
 // resonant closed-loop noise spectra, so it is not used).
 #include <string>
 
@@ -28,14 +27,14 @@
 namespace ambid::diag {
 
 struct ResidualCheck {
-  bool determinable = false;  // the segment held at least kMinWindows windows
-  std::string reason;         // why not, when not determinable
+  bool determinable = false;                       // the segment held at least kMinWindows windows
+  std::string reason;                              // why not, when not determinable
   Eigen::Index window = 0, windows = 0, bins = 0;  // L, K, excited bins used
   // Per output: mean multiple coherence with r over the excited bins (H0 mean p_b / K), its z
   // and one-sided p-value.
   Eigen::VectorXd coherence_mean, coherence_z, coherence_p;
-  double p_value = 1.0;     // smallest p-value times q (at most 1)
-  bool consistent = true;   // p_value >= alpha (or not determinable)
+  double p_value = 1.0;    // smallest p-value times q (at most 1)
+  bool consistent = true;  // p_value >= alpha (or not determinable)
 };
 
 // `residual` (samples x outputs) and `excitation` (samples x excitations): the validation

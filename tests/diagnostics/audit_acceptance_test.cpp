@@ -101,7 +101,9 @@ TEST_P(OutOfCatalogue, IsNotForcedOntoACatalogueEffect) {
   const AuditResult r = run_audit(testing::simulate_truth(GetParam().truth));
   print(GetParam().name, r);
   EXPECT_TRUE(GetParam().allowed.count(r.cause)) << "cause " << r.cause;
-  if (GetParam().seen) EXPECT_NE(r.cause, "none") << "the mismatch went unseen";
+  if (GetParam().seen) {
+    EXPECT_NE(r.cause, "none") << "the mismatch went unseen";
+  }
 }
 
 std::vector<Mismatch> mismatches() {
