@@ -18,16 +18,46 @@
 // matched saturation of another curve at z 3.60 against 3.58). On independent records at 0.1 um / 1 mA the NRMSE
 // ranking named amplifier_gain for a coil resistance whose z was 1177 against 1055 (observer loop) and 189 against 34
 // (lead-lag), sensor_delay for eddy currents at z 7.9 against 8.3, and an air gap (z 4) before a flexible mode (z 9).
-// The best candidate becomes the cause only when its validation improvement is beyond what noise explains
-// (audit_significance.hpp: z above the Bonferroni threshold for `false_acceptance` over the
-// fitted candidates) and it lowers nrmse_total; otherwise cause = "none". On data where the
-// nominal model is right a cause is named with probability at most `false_acceptance`.
+// A candidate is significant when its validation improvement is beyond what noise explains (audit_significance.hpp: z
+// above the Bonferroni threshold for `false_acceptance` over the fitted candidates) and it
+// lowers nrmse_total.
+//
+// Residual check (audit_residual_check.hpp): the validation residual of a model is consistent
+// with noise when, per output, the sum over the excited bins of its multiple coherence with r
+// (non-overlapping Hann windows, K of them, p excitations) is within the upper tail of its
+// null law (Beta(p, K - p) per bin, a scaled chi-square for the sum). Coherence is the r-driven
+// part of the residual spectrum against the residual's own incoherent floor, bin by bin, so it
+// is invariant to the level and colour of the closed-loop noise: nothing is assumed of the
+// generator. Bonferroni over the q outputs: a right model is rejected with probability at most
+// `residual_alpha` (1 %; measured in tests/diagnostics/audit_residual_check_test.cpp and
+// audit_acceptance_slow_test.cpp). It does not see a residual offset or drift (removed per
+// window) nor structure not coherent with r.
+//
+// Acceptance is sequential (forward selection), up to `max_effects` (3): each round takes the
+// significant finding of best score (listed first in its round), and the next round searches
+// the remaining effects on top of the effects taken (same screening, fit, significance test
+// against the previous extended model, residual check). The search ends when no candidate of a round is significant. Then
+// cause = the first effect taken and `causes` all of them in order when the last extended
+// model passes the residual check; "unexplained" when it does not, or when nothing is
+// significant but the nominal residual fails the check; "none" when nothing is significant and
+// the nominal residual passes. On data where the nominal model is right a catalogue cause is
+// named with probability at most `false_acceptance` and "unexplained" with at most
+// `residual_alpha`; with one right effect, a false second one is added with probability at
+// most `false_acceptance`.
 // Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
 // correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
 //
-// audit.json has the contract's keys exactly, plus these additive ones: per finding
-// "significance" {z, p_value, nrmse2_reduction}; "acceptance" {rule,
-// false_acceptance_probability, z_threshold}; "frf_ratio" {estimator, segment, lines,
+// audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
+// order accepted, empty unless cause is a catalogue effect; "finding" the index into
+// "findings"), plus these additive ones: per finding "round" (1-based search round; later
+// rounds are fitted on top of the effects taken before), "significant", "accepted",
+// "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below); the
+// nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
+// cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
+// excited_bins, p_value, consistent, outputs: {"y": {coherence_mean, coherence_z,
+// coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
+// expected under noise); "acceptance" {rule, false_acceptance_probability, z_threshold,
+// residual_rule, residual_alpha}; "frf_ratio" {estimator, segment, lines,
 // nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
 // segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
 // "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
@@ -46,6 +76,7 @@
 #include "diagnostics/audit/audit_fit.hpp"
 #include "diagnostics/audit/audit_frf.hpp"
 #include "diagnostics/audit/audit_replay.hpp"
+#include "diagnostics/audit/audit_residual_check.hpp"
 #include "diagnostics/audit/audit_significance.hpp"
 #include "diagnostics/audit/audit_spectrum.hpp"
 #include "plant_sim/effects.hpp"
@@ -60,6 +91,8 @@ struct AuditOptions {
   double complexity_penalty = 0.5;      // ranking score = z - penalty * (parameters - 1)
   double false_acceptance = 0.01;       // P(a cause is named | the nominal model is right)
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
+  double residual_alpha = 0.01;         // P(the residual check rejects a right model)
+  int max_effects = 3;                  // effects accepted at most (sequentially), 1 to 3
   FitOptions fit;
 };
 
@@ -67,8 +100,12 @@ struct AuditFinding {
   sim::Effect effect;           // fitted; channel 0 means none (null in audit.json)
   Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
-  double score = 0.0;    // the ranking (AuditOptions::complexity_penalty), higher first
-  ImprovementTest test;  // validation improvement against noise
+  double score = 0.0;        // the ranking (AuditOptions::complexity_penalty), higher first
+  ImprovementTest test;      // validation improvement against noise (against the previous round's model)
+  double z_threshold = 0.0;  // the z this finding needed (Bonferroni over its round)
+  bool significant = false;  // z above the threshold, reduction > 0, nrmse_total lowered
+  ResidualCheck residual;    // the extended model's validation residual against noise
+  int round = 1;             // search round: fitted on top of the effects taken in earlier rounds
   bool accepted = false;
   std::string evidence;
 };
@@ -78,12 +115,15 @@ struct AuditResult {
   std::vector<std::string> outputs, inputs;
   Eigen::VectorXd baseline_nrmse;      // nominal model, validation segment
   double baseline_total = 0.0;         // mean of the per-output NRMSE
-  std::vector<AuditFinding> findings;  // fitted candidates, best score first
-  std::string cause = "none";
-  double false_acceptance = 0.0;     // AuditOptions::false_acceptance
-  double z_threshold = 0.0;          // the z a finding needed to be accepted
-  Segment estimation, validation;    // both leave out the samples where a controller clamp acted
-  Eigen::Index clamped_samples = 0;  // of the record (controller.output_limits, state_limits)
+  std::vector<AuditFinding> findings;  // fitted candidates by round; in each, the one taken first, then by score
+  std::string cause = "none";          // the first of `causes`, "none" or "unexplained"
+  std::vector<std::string> causes;     // every accepted effect in the order accepted
+  double false_acceptance = 0.0;       // AuditOptions::false_acceptance
+  double z_threshold = 0.0;            // the z a finding of the first round needed to be accepted
+  double residual_alpha = 0.0;         // AuditOptions::residual_alpha
+  ResidualCheck nominal_check;         // the nominal model's validation residual against noise
+  Segment estimation, validation;      // both leave out the samples where a controller clamp acted
+  Eigen::Index clamped_samples = 0;    // of the record (controller.output_limits, state_limits)
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
   // segment, |correlation| of each nominal residual with each excitation (outputs x r).
@@ -96,7 +136,8 @@ struct AuditResult {
   AuditFrfs frfs;
   // Whether the nominal residual depends on the excitation amplitude (whole record).
   AmplitudeDependence amplitude;
-  std::vector<sim::Effect> extended_effects;  // the accepted effect, or empty
+  std::vector<sim::Effect> extended_effects;     // the accepted effects in order, or empty
+  std::vector<sim::Effect> unexplained_effects;  // taken provisionally when cause is unexplained
 };
 
 // Error/InsufficientData when the experiment cannot be audited (no controller, no
@@ -106,7 +147,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options = 
 // audit.json exactly as the contract has it.
 nlohmann::json audit_json(const AuditResult& result, const std::string& experiment_file,
                           const std::string& extended_model_file);
-// The extended model: nominal parameters plus the accepted effect(s) and their fit.
+// The extended model: nominal parameters plus the accepted effects (in order) and their fit.
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& result);
 
 }  // namespace ambid::diag

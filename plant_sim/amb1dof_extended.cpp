@@ -11,7 +11,8 @@
 namespace ambid::sim {
 namespace {
 
-// coil_resistance, amplifier_gain, air_gap and rotor_mass change the nominal parameters.
+// coil_resistance, amplifier_gain, air_gap, rotor_mass and force_factor change the nominal
+// parameters.
 Amb1dofParameters with_parameter_effects(Amb1dofParameters p, const std::vector<Effect>& effects) {
   std::set<std::string> seen;
   for (const auto& e : effects) {
@@ -21,6 +22,7 @@ Amb1dofParameters with_parameter_effects(Amb1dofParameters p, const std::vector<
     if (e.name == "amplifier_gain") p.set("kw" + channel, p.get("kw" + channel) + e.at("dkw"));
     if (e.name == "air_gap") p.x0 += e.at("dx0");
     if (e.name == "rotor_mass") p.m += e.at("dm");
+    if (e.name == "force_factor") p.set("K" + channel, p.get("K" + channel) * (1.0 + e.at("dratio")));
   }
   try {
     p.validate();

@@ -28,7 +28,7 @@ namespace ambid::sim {
 class Amb1dofExtended : public Plant {
  public:
   // `nominal`: the parameters before the parameter effects (coil_resistance, amplifier_gain,
-  // air_gap, rotor_mass) are added. `sample_time` is needed only by sensor_delay (the delay
+  // air_gap, rotor_mass, force_factor) are applied. `sample_time` is needed only by sensor_delay (the delay
   // line holds one value per sample). Error for an effect given twice, a sensor delay without
   // a positive sample time, or parameters that become invalid (e.g. R1 + dR <= 0).
   Amb1dofExtended(const Amb1dofParameters& nominal, const std::vector<Effect>& effects, double sample_time = 0.0);

@@ -65,6 +65,12 @@ std::vector<EffectSpec> build_catalogue() {
         switching("Fc", "N", 0.5, -1e4, 1e4, "cosine amplitude of the force"),
         switching("Fs", "N", 0.5, -1e4, 1e4, "sine amplitude of the force")},
        "a periodic force acts on the rotor (unbalance at a fixed speed, a mains-frequency field)"},
+      {"force_factor",
+       true,
+       {switching("dratio", "1", 0.1, -0.9, 1.0,
+                  "true force factor K_j of the coil over its nominal, minus 1 (ratio - 1)")},
+       "the force and back-EMF factor of one coil alone differs from the nominal (shorted turns, a cracked "
+       "lamination)"},
   };
 }
 

@@ -34,7 +34,7 @@ struct EffectSpec {
   std::string summary;
 };
 
-// The eleven effects of amb1dof_voltage in vocabulary order. Other families bring their own
+// The twelve effects of amb1dof_voltage in vocabulary order. Other families bring their own
 // catalogue (plant_sim/families.hpp); the functions that take a `catalogue` work on any.
 const std::vector<EffectSpec>& effect_catalogue();
 std::vector<std::string> effect_names();

@@ -10,6 +10,7 @@
 #include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_mode_search.hpp"
+#include "diagnostics/audit/audit_residual_check.hpp"
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
@@ -58,15 +59,123 @@ std::vector<sim::Effect> starts_of(const std::vector<sim::EffectSpec>& catalogue
 std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::VectorXd& correlation) {
   std::ostringstream s;
   s.precision(3);
-  s << sim::effect_spec(effect_catalogue_of(r.plant_model, "audit"), f.effect.name).summary << ";";
+  s << sim::effect_spec(effect_catalogue_of(r.plant_model, "audit"), f.effect.name).summary;
+  if (f.effect.channel) s << " (channel " << f.effect.channel << ")";
+  s << ";";
+  if (f.round > 1) s << " fitted on top of the effects accepted before (round " << f.round << ");";
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     s << " " << r.outputs[j] << " NRMSE " << r.baseline_nrmse[Eigen::Index(j)] << " -> "
       << f.nrmse_after[Eigen::Index(j)];
   if (f.effect.name == "harmonic_disturbance" || f.effect.name == "flexible_mode")
     s << "; residual line at " << f.effect.at("f") << " Hz";
+  if (f.effect.name == "force_factor")
+    s << "; coil " << f.effect.channel << " force factor K" << f.effect.channel << " x " << 1.0 + f.effect.at("dratio");
   s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
-  s << "; validation improvement z = " << f.test.z << " (accepted above " << r.z_threshold << ")";
+  s << "; validation improvement z = " << f.test.z << " (accepted above " << f.z_threshold << ")";
+  if (f.residual.determinable)
+    s << "; extended residual " << (f.residual.consistent ? "consistent with noise" : "NOT consistent with noise")
+      << " (mean coherence with r up to " << f.residual.coherence_mean.maxCoeff() << ", p = " << f.residual.p_value
+      << ")";
   return s.str();
+}
+
+// A fitted finding with its replay over the whole record.
+struct Scored {
+  AuditFinding finding;
+  ReplayedLoop loop;
+};
+
+// One round of the search: every catalogue effect not in `base` screened, the most promising
+// fitted on top of `base` (whose replay is `base_loop`), scored on the validation segment and
+// tested against `base_loop`; best score first.
+std::vector<Scored> search_round(const Experiment& measured, const AuditResult& r, const std::vector<sim::Effect>& base,
+                                 const ReplayedLoop& base_loop, double base_total, int round,
+                                 const AuditOptions& options) {
+  const double dt = measured.sample_time;
+  const Eigen::Index N = measured.samples();
+  const std::vector<sim::EffectSpec>& catalogue = effect_catalogue_of(r.plant_model, "audit");
+  const Eigen::MatrixXd residual = r.measured - base_loop.y;
+  const Eigen::MatrixXd r_dev = measured.r_deviation();
+
+  // Screening.
+  const Eigen::MatrixXd est_residual = residual.topRows(r.estimation.end);
+  const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
+  const double nyquist = 0.5 / dt;
+  const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
+  // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
+  const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
+  auto with_base = [&](const sim::Effect& e) {
+    std::vector<sim::Effect> effects = base;
+    effects.push_back(e);
+    return effects;
+  };
+  const std::vector<sim::Effect> data_starts = audit_starts_from_data(measured);
+  std::vector<Candidate> candidates;
+  std::size_t screened = 0;
+  for (const auto& spec : catalogue) {
+    if (options.progress)
+      options.progress("screen the effect catalogue (round " + std::to_string(round) + ")", screened++,
+                       catalogue.size());
+    if (std::any_of(base.begin(), base.end(), [&](const sim::Effect& e) { return e.name == spec.name; })) continue;
+    for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
+      Candidate best{{}, INFINITY};
+      if (spec.name == "flexible_mode") {
+        // Matched to the residual of the current model; the search replays the mode alone, so
+        // on top of accepted effects its start is costed again with them.
+        const ModeStart mode = search_mode_start(measured, r.measured, base_loop.y, r.estimation, mode_f);
+        best = {mode.effect, base.empty() ? mode.cost
+                                          : estimation_cost(measured, r.measured, with_base(mode.effect), r.estimation)};
+      }
+      std::vector<sim::Effect> starts = starts_of(catalogue, spec, channel, harmonic_f);
+      for (const auto& s : data_starts)
+        if (s.name == spec.name && s.channel == channel) starts.push_back(s);
+      for (const auto& start : starts) {
+        const double c = estimation_cost(measured, r.measured, with_base(start), r.estimation);
+        if (c < best.cost || best.start.name.empty()) best = {start, c};
+      }
+      candidates.push_back(best);
+    }
+  }
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
+
+  // Fit the most promising candidates, score them on the validation segment.
+  const int fitted = std::min<int>(options.fitted_candidates, int(candidates.size()));
+  std::vector<Scored> scored;
+  for (int c = 0; c < fitted; ++c) {
+    if (options.progress) options.progress("fit the best candidates", std::size_t(c), std::size_t(fitted));
+    if (!std::isfinite(candidates[std::size_t(c)].cost)) continue;
+    const EffectFit fit =
+        fit_effect(measured, r.measured, candidates[std::size_t(c)].start, r.estimation, options.fit, base);
+    AuditFinding f;
+    f.effect = fit.effect;
+    f.round = round;
+    f.nrmse_total_before = base_total;
+    ReplayedLoop loop;
+    try {
+      loop = replay_loop(measured, with_base(fit.effect), N);
+    } catch (const InsufficientData&) {
+      throw;
+    } catch (const Error&) {
+      continue;  // fitted on one part, it cannot even be simulated over the whole record
+    }
+    f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
+    f.test = improvement_test(r.measured, base_loop.y, loop.y, r.validation, options.covariance_lags);
+    f.nrmse_total_after = total(f.nrmse_after);
+    f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
+    f.residual = residual_check((r.measured - loop.y).middleRows(r.validation.begin, r.validation.size()),
+                                r_dev.middleRows(r.validation.begin, r.validation.size()), options.residual_alpha);
+    scored.push_back({std::move(f), std::move(loop)});
+  }
+  std::stable_sort(scored.begin(), scored.end(),
+                   [](const Scored& a, const Scored& b) { return a.finding.score > b.finding.score; });
+  const double threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(scored.size())));
+  for (auto& s : scored) {
+    s.finding.z_threshold = threshold;
+    s.finding.significant =
+        s.finding.test.reduction > 0.0 && s.finding.test.z > threshold && s.finding.nrmse_total_after < base_total;
+  }
+  return scored;
 }
 
 }  // namespace
@@ -76,11 +185,14 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   acceptance_threshold(options.false_acceptance, 1);  // refuses a bad probability before the fits
   if (!(options.estimation_fraction > 0.1 && options.estimation_fraction < 0.9))
     throw Error("audit: estimation_fraction must be in (0.1, 0.9), got " + std::to_string(options.estimation_fraction));
+  if (!(options.residual_alpha > 0.0 && options.residual_alpha < 1.0))
+    throw Error("audit: residual_alpha must be in (0, 1), got " + std::to_string(options.residual_alpha));
+  if (options.max_effects < 1 || options.max_effects > 3)
+    throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
   const double dt = measured.sample_time;
   const Eigen::Index N = measured.samples();
   AuditResult r;
   r.plant_model = measured.plant.model;
-  const std::vector<sim::EffectSpec>& catalogue = effect_catalogue_of(r.plant_model, "audit");
   r.outputs = measured.y_names;
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
@@ -107,78 +219,53 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   for (Eigen::Index j = 0; j < residual.cols(); ++j)
     for (Eigen::Index i = 0; i < r_dev.cols(); ++i)
       r.excitation_correlation(j, i) = excitation_correlation(residual.col(j), r_dev.col(i), 50);
-
-  // Screening.
-  const Eigen::MatrixXd est_residual = residual.topRows(r.estimation.end);
-  const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
-  const double nyquist = 0.5 / dt;
-  const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
-  // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
-  const std::vector<double> mode_f = spectral_peaks(est_residual.col(0), dt, 100.0, 0.9 * nyquist, 3);
-  const std::vector<sim::Effect> data_starts = audit_starts_from_data(measured);
-  std::vector<Candidate> candidates;
-  std::size_t screened = 0;
-  for (const auto& spec : catalogue) {
-    if (options.progress) options.progress("screen the effect catalogue", screened++, catalogue.size());
-    for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
-      Candidate best{{}, INFINITY};
-      if (spec.name == "flexible_mode") {
-        const ModeStart mode = search_mode_start(measured, r.measured, r.nominal, r.estimation, mode_f);
-        best = {mode.effect, mode.cost};
-      }
-      std::vector<sim::Effect> starts = starts_of(catalogue, spec, channel, harmonic_f);
-      for (const auto& s : data_starts)
-        if (s.name == spec.name && s.channel == channel) starts.push_back(s);
-      for (const auto& start : starts) {
-        const double c = estimation_cost(measured, r.measured, {start}, r.estimation);
-        if (c < best.cost || best.start.name.empty()) best = {start, c};
-      }
-      candidates.push_back(best);
-    }
-  }
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const Candidate& a, const Candidate& b) { return a.cost < b.cost; });
-
-  // Fit the most promising candidates, score them on the validation segment.
-  const int fitted = std::min<int>(options.fitted_candidates, int(candidates.size()));
-  // Each finding with its replay over the whole record (the accepted one's is the extended model's).
-  std::vector<std::pair<AuditFinding, ReplayedLoop>> scored;
-  for (int c = 0; c < fitted; ++c) {
-    if (options.progress) options.progress("fit the best candidates", std::size_t(c), std::size_t(fitted));
-    if (!std::isfinite(candidates[std::size_t(c)].cost)) continue;
-    const EffectFit fit = fit_effect(measured, r.measured, candidates[std::size_t(c)].start, r.estimation, options.fit);
-    AuditFinding f;
-    f.effect = fit.effect;
-    f.nrmse_total_before = r.baseline_total;
-    ReplayedLoop loop;
-    try {
-      loop = replay_loop(measured, {fit.effect}, N);
-    } catch (const InsufficientData&) {
-      throw;
-    } catch (const Error&) {
-      continue;  // fitted on one part, it cannot even be simulated over the whole record
-    }
-    f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
-    f.test = improvement_test(r.measured, r.nominal, loop.y, r.validation, options.covariance_lags);
-    f.nrmse_total_after = total(f.nrmse_after);
-    f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
-    scored.emplace_back(std::move(f), std::move(loop));
-  }
-  std::stable_sort(scored.begin(), scored.end(),
-                   [](const auto& a, const auto& b) { return a.first.score > b.first.score; });
-  for (auto& [finding, loop] : scored) r.findings.push_back(finding);
   r.false_acceptance = options.false_acceptance;
-  r.z_threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(r.findings.size())));
-  for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
-  if (!r.findings.empty()) {
-    AuditFinding& best = r.findings.front();
-    if (best.test.reduction > 0.0 && best.test.z > r.z_threshold && best.nrmse_total_after < r.baseline_total) {
-      best.accepted = true;
-      r.cause = best.effect.name;
-      r.extended_effects = {best.effect};
+  r.residual_alpha = options.residual_alpha;
+  r.nominal_check = residual_check(residual.middleRows(r.validation.begin, r.validation.size()),
+                                   r_dev.middleRows(r.validation.begin, r.validation.size()), options.residual_alpha);
+
+  // Sequential acceptance (forward selection): each round searches on top of the effects taken
+  // so far and takes the significant finding of best score; the search goes on while a round
+  // finds a significant improvement. The residual check judges the last model.
+  std::vector<sim::Effect> taken;
+  std::vector<std::size_t> taken_findings;
+  ReplayedLoop current = nominal;
+  double current_total = r.baseline_total;
+  ResidualCheck current_check = r.nominal_check;
+  for (int round = 1; round <= options.max_effects; ++round) {
+    std::vector<Scored> scored = search_round(measured, r, taken, current, current_total, round, options);
+    if (round == 1)
+      r.z_threshold =
+          scored.empty() ? acceptance_threshold(options.false_acceptance, 1) : scored.front().finding.z_threshold;
+    // The strongest evidence against noise: the significant finding of best score (z less the
+    // complexity penalty), put first.
+    auto pick = std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+    if (pick != scored.end()) {
+      std::rotate(scored.begin(), pick, pick + 1);
+      pick = scored.begin();
     }
+    const std::size_t offset = r.findings.size();
+    for (auto& s : scored) r.findings.push_back(s.finding);
+    if (pick == scored.end()) break;
+    taken.push_back(pick->finding.effect);
+    taken_findings.push_back(offset + std::size_t(pick - scored.begin()));
+    current = std::move(pick->loop);
+    current_total = pick->finding.nrmse_total_after;
+    current_check = pick->finding.residual;
   }
-  const ReplayedLoop& extended = r.extended_effects.empty() ? nominal : scored.front().second;
+  for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
+  if (!taken.empty() && current_check.consistent) {
+    for (std::size_t i : taken_findings) {
+      r.findings[i].accepted = true;
+      r.causes.push_back(r.findings[i].effect.name);
+    }
+    r.cause = r.causes.front();
+    r.extended_effects = taken;
+  } else if (!taken.empty() || !r.nominal_check.consistent) {
+    r.cause = "unexplained";
+    r.unexplained_effects = taken;
+  }
+  const ReplayedLoop& extended = r.extended_effects.empty() ? nominal : current;
   r.extended = extended.y;
   const Eigen::Index L = std::min<Eigen::Index>(512, r.validation.size());
   r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);
@@ -210,6 +297,26 @@ nlohmann::json ratio_json(const ident::Frf& ratio, const AuditResult& r) {
   return pairs;
 }
 
+nlohmann::json check_json(const ResidualCheck& c, const AuditResult& r) {
+  nlohmann::json outputs = nlohmann::json::object();
+  for (std::size_t j = 0; j < r.outputs.size() && c.determinable; ++j) {
+    const auto i = Eigen::Index(j);
+    outputs[r.outputs[j]] = {
+        {"coherence_mean", c.coherence_mean[i]}, {"coherence_z", c.coherence_z[i]}, {"coherence_p", c.coherence_p[i]}};
+  }
+  nlohmann::json j = {
+      {"determinable", c.determinable}, {"window", c.window},         {"windows", c.windows}, {"excited_bins", c.bins},
+      {"p_value", c.p_value},           {"consistent", c.consistent}, {"outputs", outputs}};
+  if (!c.determinable) j["reason"] = c.reason;
+  return j;
+}
+
+nlohmann::json effect_json(const sim::Effect& e) {
+  return {{"effect", e.name},
+          {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json(nullptr)},
+          {"parameters", e.parameters}};
+}
+
 }  // namespace
 
 nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_file,
@@ -221,14 +328,31 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
   };
   nlohmann::json findings = nlohmann::json::array();
   for (const auto& f : r.findings)
-    findings.push_back(
-        {{"effect", f.effect.name},
-         {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
-         {"parameters", f.effect.parameters},
-         {"nrmse_total_before", f.nrmse_total_before},
-         {"nrmse_total_after", f.nrmse_total_after},
-         {"evidence", f.evidence},
-         {"significance", {{"z", f.test.z}, {"p_value", f.test.p_value}, {"nrmse2_reduction", f.test.reduction}}}});
+    findings.push_back({{"effect", f.effect.name},
+                        {"channel", f.effect.channel ? nlohmann::json(f.effect.channel) : nlohmann::json(nullptr)},
+                        {"parameters", f.effect.parameters},
+                        {"nrmse_total_before", f.nrmse_total_before},
+                        {"nrmse_total_after", f.nrmse_total_after},
+                        {"evidence", f.evidence},
+                        {"round", f.round},
+                        {"significant", f.significant},
+                        {"accepted", f.accepted},
+                        {"significance",
+                         {{"z", f.test.z},
+                          {"p_value", f.test.p_value},
+                          {"nrmse2_reduction", f.test.reduction},
+                          {"z_threshold", f.z_threshold}}},
+                        {"residual_check", check_json(f.residual, r)}});
+  nlohmann::json causes = nlohmann::json::array();
+  for (std::size_t i = 0; i < r.findings.size(); ++i)
+    if (r.findings[i].accepted) {
+      nlohmann::json c = effect_json(r.findings[i].effect);
+      c.erase("parameters");
+      c["finding"] = i;
+      causes.push_back(c);
+    }
+  nlohmann::json unexplained_after = nlohmann::json::array();
+  for (const auto& e : r.unexplained_effects) unexplained_after.push_back(effect_json(e));
   nlohmann::json correlation = nlohmann::json::object();
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     for (Eigen::Index i = 0; i < r.excitation_correlation.cols(); ++i)
@@ -268,6 +392,7 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
           {"experiment", experiment_file},
           {"baseline", {{"nrmse", per_output(r.baseline_nrmse)}, {"nrmse_total", r.baseline_total}}},
           {"cause", r.cause},
+          {"causes", causes},
           {"findings", findings},
           {"extended_model", extended_model_file},
           {"frf_ratio", frf_ratio},
@@ -278,15 +403,18 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
           {"acceptance",
            {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
             {"false_acceptance_probability", r.false_acceptance},
-            {"z_threshold", r.z_threshold}}}};
+            {"z_threshold", r.z_threshold},
+            {"residual_rule",
+             "the extended model's validation residual passes the residual check (multiple coherence with r over the "
+             "excited bins against its null law) at residual_alpha; otherwise cause is unexplained"},
+            {"residual_alpha", r.residual_alpha}}},
+          {"residual_check", check_json(r.nominal_check, r)},
+          {"unexplained_after", unexplained_after}};
 }
 
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& r) {
   nlohmann::json effects = nlohmann::json::array();
-  for (const auto& e : r.extended_effects)
-    effects.push_back({{"effect", e.name},
-                       {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json(nullptr)},
-                       {"parameters", e.parameters}});
+  for (const auto& e : r.extended_effects) effects.push_back(effect_json(e));
   const Eigen::VectorXd fit = nrmse(r.measured, r.extended, r.validation);
   nlohmann::json per_output = nlohmann::json::object();
   for (std::size_t i = 0; i < r.outputs.size(); ++i) per_output[r.outputs[i]] = fit[Eigen::Index(i)];

@@ -22,6 +22,7 @@ struct ReplayResiduals {
   std::vector<sim::EffectParameterSpec> specs;
   Segment estimation;
   Eigen::VectorXd inverse_spread;  // 1 / ||y_j - mean|| on the estimation segment
+  std::vector<sim::Effect> base;   // effects already accepted, replayed along
 
   sim::Effect at(const double* theta) const {
     sim::Effect e = effect;
@@ -32,7 +33,9 @@ struct ReplayResiduals {
   bool operator()(const double* theta, double* residuals) const {
     Eigen::MatrixXd y;
     try {
-      y = replay_outputs(measured, {at(theta)}, estimation.end);
+      std::vector<sim::Effect> effects = base;
+      effects.push_back(at(theta));
+      y = replay_outputs(measured, effects, estimation.end);
     } catch (const Error&) {
       return false;  // the rotor touched the bearing, or an invalid parameter: not a step to take
     }
@@ -58,9 +61,9 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
 }
 
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
-                     const Segment& estimation, const FitOptions& options) {
+                     const Segment& estimation, const FitOptions& options, const std::vector<sim::Effect>& base) {
   const sim::EffectSpec& spec = sim::effect_spec(effect_catalogue_of(measured.plant.model, "audit"), start.name);
-  ReplayResiduals residuals{measured, measured_y, start, spec.parameters, estimation, {}};
+  ReplayResiduals residuals{measured, measured_y, start, spec.parameters, estimation, {}, base};
   residuals.inverse_spread =
       nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();
   const int k = int(spec.parameters.size());

@@ -25,8 +25,10 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
                        const std::vector<sim::Effect>& effects, const Segment& estimation);
 
 // Starts from `start` (an effect of the catalogue with initial values). `measured_y` is
-// measured.y_deviation(). Error when the start itself cannot be simulated.
+// measured.y_deviation(). `base`: effects already accepted, held at their values while
+// `start` is fitted on top of them. Error when the start itself cannot be simulated.
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
-                     const Segment& estimation, const FitOptions& options = {});
+                     const Segment& estimation, const FitOptions& options = {},
+                     const std::vector<sim::Effect>& base = {});
 
 }  // namespace ambid::diag

@@ -173,23 +173,35 @@ std::string audit_verdict(const diag::AuditResult& r) {
       << ", i.e. a false-acceptance probability of " << r.false_acceptance << "). Cause: none.";
     return s.str();
   }
-  const auto& f = r.findings.front();
-  const sim::EffectSpec& spec = sim::effect_spec(diag::effect_catalogue_of(r.plant_model, "audit"), f.effect.name);
-  s << "The simulation misses " << f.effect.name;
-  if (f.effect.channel) s << " on channel " << f.effect.channel;
-  s << " (" << spec.summary << "). With it fitted (";
-  bool first = true;
-  for (const auto& p : spec.parameters) {
-    s << (first ? "" : ", ") << p.name << " = " << f.effect.at(p.name) << " " << p.unit;
-    first = false;
+  if (r.cause == "unexplained") {
+    s << "The nominal model is wrong (its validation residual is more than noise), but no extension of the catalogue "
+         "leaves a residual consistent with noise (residual check at "
+      << r.residual_alpha << "). Cause: unexplained.";
+    if (!r.findings.empty())
+      s << " The best candidate was " << r.findings.front().effect.name << " (NRMSE " << r.baseline_total << " -> "
+        << r.findings.front().nrmse_total_after << ").";
+    if (r.amplitude.dependent) s << " The nominal model's error grows with the excitation amplitude.";
+    return s.str();
   }
-  s << "), the error on data the fit did not see falls from NRMSE " << f.nrmse_total_before << " to "
-    << f.nrmse_total_after << "; noise alone would explain such a gain with probability ";
-  if (f.test.p_value < 1e-6)
-    s << "below 1e-6";
-  else
-    s << f.test.p_value;
-  s << " (z = " << f.test.z << ").";
+  for (const auto& f : r.findings) {
+    if (!f.accepted) continue;
+    s << (f.round == 1 ? "The simulation misses " : " Besides, it misses ") << f.effect.name;
+    if (f.effect.channel) s << " on channel " << f.effect.channel;
+    const sim::EffectSpec& spec = sim::effect_spec(diag::effect_catalogue_of(r.plant_model, "audit"), f.effect.name);
+    s << " (" << spec.summary << "). With it fitted (";
+    bool first = true;
+    for (const auto& p : spec.parameters) {
+      s << (first ? "" : ", ") << p.name << " = " << f.effect.at(p.name) << " " << p.unit;
+      first = false;
+    }
+    s << "), the error on data the fit did not see falls from NRMSE " << f.nrmse_total_before << " to "
+      << f.nrmse_total_after << "; noise alone would explain such a gain with probability ";
+    if (f.test.p_value < 1e-6)
+      s << "below 1e-6";
+    else
+      s << f.test.p_value;
+    s << " (z = " << f.test.z << ").";
+  }
   if (r.amplitude.dependent) s << " The nominal model's error grows with the excitation amplitude: a nonlinear effect.";
   return s.str();
 }

@@ -30,6 +30,7 @@ sim::Effect draw_effect(const std::string& name, std::uint64_t seed) {
   if (name == "magnetic_saturation") v["beta"] = uniform(0.2, 0.5);
   if (name == "air_gap") v["dx0"] = sign * uniform(2e-5, 5e-5);
   if (name == "rotor_mass") v["dm"] = sign * uniform(0.1, 0.3);
+  if (name == "force_factor") v["dratio"] = sign * uniform(0.05, 0.15);
   if (name == "harmonic_disturbance") {
     const double amplitude = uniform(0.1, 0.5), phase = uniform(0.0, 2 * std::numbers::pi);
     v["f"] = uniform(20.0, 400.0);

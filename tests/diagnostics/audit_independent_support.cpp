@@ -29,9 +29,6 @@ sim::Effect effect_at(const std::string& name, double multiple, std::uint64_t se
   auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
   const double sign = uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
   const int channel = uniform(0.0, 1.0) < 0.5 ? 1 : 2;
-  const auto names = sim::effect_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())  // force_factor before the catalogue has it
-    return {name, channel, {{"ratio", 1.0 + sign * 0.1 * multiple}}};
   const sim::EffectSpec& spec = sim::effect_spec(name);
   std::map<std::string, double> v;
   if (spec.has_channel) v["channel"] = channel;
@@ -47,14 +44,12 @@ sim::Effect effect_at(const std::string& name, double multiple, std::uint64_t se
     double value = (p.lower < 0.0 ? sign : 1.0) * multiple * p.scale;
     if (p.name == "Fc") value = multiple * p.scale * std::cos(phase);
     if (p.name == "Fs") value = multiple * p.scale * std::sin(phase);
-    if (p.name == "ratio") value = 1.0 + sign * 0.1 * multiple;
     v[p.name] = std::clamp(value, p.lower, p.upper);
   }
   return sim::make_effect(name, v);
 }
 
 double relative_size(const sim::Effect& effect) {
-  if (effect.name == "force_factor") return std::abs(effect.at("ratio") - 1.0) / 0.1;
   if (effect.name == "harmonic_disturbance") return std::hypot(effect.at("Fc"), effect.at("Fs")) / 0.5;
   for (const auto& p : sim::effect_spec(effect.name).parameters)
     if (p.switches) return std::abs(effect.at(p.name)) / p.scale;

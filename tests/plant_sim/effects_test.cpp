@@ -44,7 +44,7 @@ TEST(EffectCatalogue, VocabularyOfTheContract) {
   EXPECT_EQ(effect_names(),
             (std::vector<std::string>{"coil_resistance", "amplifier_gain", "amplifier_bandwidth", "eddy_current",
                                       "sensor_delay", "sensor_gain", "flexible_mode", "magnetic_saturation", "air_gap",
-                                      "rotor_mass", "harmonic_disturbance"}));
+                                      "rotor_mass", "harmonic_disturbance", "force_factor"}));
   for (const auto& spec : effect_catalogue()) {
     EXPECT_TRUE(make_effect(spec.name).neutral()) << spec.name;
     EXPECT_EQ(make_effect(spec.name).channel, spec.has_channel ? 1 : 0);
@@ -112,7 +112,9 @@ TEST(Effects, SmallEffectsChangeTheBearingInProportion) {
     };
     const double small = change(1e-3), twice = change(2e-3);
     EXPECT_GT(small, 0.0) << spec.name;
-    EXPECT_LT(small, 0.05) << spec.name;
+    // One coil's K alone unbalances the bias forces: 1e-4 of K1 is 12 mN at the operating
+    // point, which moves the rotor until the integral action takes it over (measured 0.10).
+    EXPECT_LT(small, spec.name == "force_factor" ? 0.15 : 0.05) << spec.name;
     EXPECT_NEAR(twice / small, 2.0, 0.2) << spec.name;
   }
 }

@@ -149,7 +149,7 @@ Truth make_truth(const EffectRecordOptions& o) {
       t.harmonic_c = e.at("Fc");
       t.harmonic_s = e.at("Fs");
     } else if (e.name == "force_factor") {
-      t.K[j] *= e.at("ratio");
+      t.K[j] *= 1.0 + e.at("dratio");
     } else {
       throw Error("effect records: unknown effect '" + e.name + "'");
     }

@@ -1,0 +1,132 @@
+#include "diagnostics/audit/audit_residual_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include "core/error.hpp"
+
+namespace ambid::diag {
+namespace {
+
+constexpr Eigen::Index kMinWindows = 16;
+
+double normal_upper_tail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
+
+// The z of a scaled chi-square g chi2(nu) with mean `mean` and variance `variance` at t
+// (Wilson-Hilferty).
+double scaled_chi_square_z(double t, double mean, double variance) {
+  const double g = variance / (2.0 * mean), nu = 2.0 * mean * mean / variance;
+  const double v = 2.0 / (9.0 * nu);
+  return (std::cbrt(std::max(t, 0.0) / (g * nu)) - (1.0 - v)) / std::sqrt(v);
+}
+
+}  // namespace
+
+ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha) {
+  if (!(alpha > 0.0 && alpha < 1.0))
+    throw Error("audit: residual check probability must be in (0, 1), got " + std::to_string(alpha));
+  if (residual.rows() != excitation.rows() || excitation.cols() < 1)
+    throw Error("audit: residual check needs the excitation over the same samples as the residual");
+  const Eigen::Index N = residual.rows(), q = residual.cols(), p = excitation.cols();
+  ResidualCheck c;
+  c.coherence_mean = c.coherence_z = Eigen::VectorXd::Zero(q);
+  c.coherence_p = Eigen::VectorXd::Ones(q);
+  Eigen::Index L = 0;
+  for (Eigen::Index candidate : {256, 128, 64})
+    if (N / candidate >= (candidate == 256 ? 24 : kMinWindows)) {
+      L = candidate;
+      break;
+    }
+  if (L == 0 || N / L <= p) {
+    c.reason = std::to_string(N) + " samples hold fewer than " + std::to_string(kMinWindows) + " windows of 64";
+    return c;
+  }
+  const Eigen::Index K = N / L, bins = L / 2;  // bins 1 .. L/2 - 1 are used
+  c.determinable = true;
+  c.window = L;
+  c.windows = K;
+
+  // DFT of every Hann-windowed, mean-free window: spectra[m] is bins x (q + p).
+  Eigen::MatrixXcd twiddle(bins, L);
+  for (Eigen::Index b = 0; b < bins; ++b)
+    for (Eigen::Index k = 0; k < L; ++k)
+      twiddle(b, k) = std::polar(1.0, -2.0 * std::numbers::pi * double(b * k % L) / double(L));
+  Eigen::VectorXd hann(L);
+  for (Eigen::Index k = 0; k < L; ++k) hann[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * double(k) / double(L));
+  std::vector<Eigen::MatrixXcd> spectra;
+  for (Eigen::Index m = 0; m < K; ++m) {
+    Eigen::MatrixXd block(L, q + p);
+    block << residual.middleRows(m * L, L), excitation.middleRows(m * L, L);
+    block.rowwise() -= block.colwise().mean();
+    spectra.push_back(twiddle * (hann.asDiagonal() * block).cast<std::complex<double>>());
+  }
+
+  // Excited bins: every other bin where the excitations' power is >= 1 % of its maximum.
+  Eigen::VectorXd r_power = Eigen::VectorXd::Zero(bins);
+  for (const auto& s : spectra) r_power += s.rightCols(p).cwiseAbs2().rowwise().sum();
+  std::vector<Eigen::Index> excited;
+  for (Eigen::Index b = 2; b < bins; b += 2)
+    if (r_power[b] >= 0.01 * r_power.segment(1, bins - 1).maxCoeff()) excited.push_back(b);
+  const double Kd = double(K);
+
+  // Per excited bin: the excitations' cross-spectrum, its rank (a multisine can give both
+  // excitations the same line in a bin: rank 1) and pseudo-inverse.
+  struct Bin {
+    Eigen::Index b;
+    Eigen::MatrixXcd Srr_pinv;
+    double rank;
+  };
+  std::vector<Bin> used;
+  for (Eigen::Index b : excited) {
+    Eigen::MatrixXcd Srr = Eigen::MatrixXcd::Zero(p, p);
+    for (const auto& s : spectra) {
+      const Eigen::VectorXcd rb = s.block(b, q, 1, p).transpose();
+      Srr += rb * rb.adjoint();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(Srr);
+    const double largest = eig.eigenvalues().maxCoeff();
+    Eigen::MatrixXcd pinv = Eigen::MatrixXcd::Zero(p, p);
+    double rank = 0.0;
+    for (Eigen::Index k = 0; k < p; ++k)
+      if (eig.eigenvalues()[k] > 1e-6 * largest) {
+        pinv += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).adjoint() / eig.eigenvalues()[k];
+        rank += 1.0;
+      }
+    if (rank > 0.0 && rank < Kd) used.push_back({b, pinv, rank});
+  }
+  c.bins = Eigen::Index(used.size());
+  for (Eigen::Index j = 0; j < q; ++j) {
+    double sum = 0.0, mean = 0.0, variance = 0.0;
+    for (const Bin& bin : used) {
+      Eigen::VectorXcd Sre = Eigen::VectorXcd::Zero(p);
+      double See = 0.0;
+      for (const auto& s : spectra) {
+        const std::complex<double> eb = s(bin.b, j);
+        Sre += s.block(bin.b, q, 1, p).transpose() * std::conj(eb);
+        See += std::norm(eb);
+      }
+      if (!(See > 0.0)) continue;
+      // Sre^H Srr^+ Sre / See ~ Beta(rank, K - rank) under noise independent of r.
+      sum += std::clamp(Sre.dot(bin.Srr_pinv * Sre).real() / See, 0.0, 1.0);
+      mean += bin.rank / Kd;
+      variance += bin.rank * (Kd - bin.rank) / (Kd * Kd * (Kd + 1.0));
+    }
+    if (mean > 0.0) {
+      c.coherence_mean[j] = sum / double(used.size());
+      c.coherence_z[j] = scaled_chi_square_z(sum, mean, variance);
+      c.coherence_p[j] = normal_upper_tail(c.coherence_z[j]);
+    }
+  }
+  c.p_value = std::min(1.0, c.coherence_p.minCoeff() * double(q));
+  c.consistent = c.p_value >= alpha;
+  return c;
+}
+
+}  // namespace ambid::diag

@@ -1,0 +1,45 @@
+#pragma once
+// Whether the validation residual of an (extended) model is consistent with noise
+// (experiment-format.md: "white enough, uncorrelated with r"), the audit's check of an accepted
+// model before it names a cause.
+//
+// The audit replays models in closed loop driven by r (simulation error), so even the right
+// model leaves the closed-loop response to sensor and process noise: a coloured residual whose
+// level and colour only the data can tell. The check asks a question whose null distribution
+// does not depend on that colour: per output, in non-overlapping Hann windows of L samples (K
+// of them), the multiple coherence C_b of the residual with the p excitations on every other
+// bin b where r has power (>= 1 % of its strongest bin). C_b is the part of the residual
+// spectrum coherent with r over its whole power, the rest being the incoherent noise floor,
+// bin by bin, so it needs no noise level. When the residual is noise independent of r,
+// C_b ~ Beta(p_b, K - p_b) (Gaussian residual, independent windows; bins two apart under
+// Hann are nearly independent; p_b the rank of the excitations' cross-spectrum in the bin,
+// which a multisine with the same line in both excitations makes 1), and T = sum_b C_b has
+// mean sum p_b / K and variance sum p_b (K - p_b) / (K^2 (K + 1)); its upper tail is taken from a scaled chi-square
+// with those moments (Wilson-Hilferty). Unmodelled structure driven by r (a wrong plant) raises C_b over the excited
+// band. The residual is consistent with noise when the smallest of the q p-values is at least alpha / q (Bonferroni): a
+// right model is rejected with probability at most alpha. Not covered: structure not coherent with r (a periodic force
+// is the catalogue's harmonic_disturbance; a spectral-line test against neighbouring bins was tried and rejected
+// resonant closed-loop noise spectra, so it is not used).
+#include <string>
+
+#include <Eigen/Core>
+
+namespace ambid::diag {
+
+struct ResidualCheck {
+  bool determinable = false;                       // the segment held at least kMinWindows windows
+  std::string reason;                              // why not, when not determinable
+  Eigen::Index window = 0, windows = 0, bins = 0;  // L, K, excited bins used
+  // Per output: mean multiple coherence with r over the excited bins (H0 mean p_b / K), its z
+  // and one-sided p-value.
+  Eigen::VectorXd coherence_mean, coherence_z, coherence_p;
+  double p_value = 1.0;    // smallest p-value times q (at most 1)
+  bool consistent = true;  // p_value >= alpha (or not determinable)
+};
+
+// `residual` (samples x outputs) and `excitation` (samples x excitations): the validation
+// segment, deviations. Not determinable (and consistent) when fewer than 16 windows of 64
+// samples fit. Error for mismatched rows, no excitation, or alpha outside (0, 1).
+ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha);
+
+}  // namespace ambid::diag
