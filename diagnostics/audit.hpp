@@ -36,16 +36,14 @@
 // Acceptance is sequential (forward selection), up to `max_effects` (3): each round takes the
 // significant finding of best score (listed first in its round), and the next round searches
 // the remaining effects on top of the effects taken (same screening, fit, significance test
-// against the previous extended model, residual check). The search ends when no candidate of a round is significant. Then
-// cause = the first effect taken and `causes` all of them in order when the last extended
-// model passes the residual check; "unexplained" when it does not, or when nothing is
-// significant but the nominal residual fails the check; "none" when nothing is significant and
-// the nominal residual passes. On data where the nominal model is right a catalogue cause is
-// named with probability at most `false_acceptance` and "unexplained" with at most
-// `residual_alpha`; with one right effect, a false second one is added with probability at
-// most `false_acceptance`.
-// Besides: the plant FRF ratio measured / model (audit_frf.hpp), the nominal residual's
-// correlation with each excitation, and its dependence on amplitude (audit_amplitude.hpp).
+// against the previous extended model, residual check). The search ends when no candidate of a round is significant.
+// Then cause = the first effect taken and `causes` all of them in order when the last extended model passes the
+// residual check; "unexplained" when it does not, or when nothing is significant but the nominal residual fails the
+// check; "none" when nothing is significant and the nominal residual passes. On data where the nominal model is right a
+// catalogue cause is named with probability at most `false_acceptance` and "unexplained" with at most `residual_alpha`;
+// with one right effect, a false second one is added with probability at most `false_acceptance`. Besides: the plant
+// FRF ratio measured / model (audit_frf.hpp), the nominal residual's correlation with each excitation, and its
+// dependence on amplitude (audit_amplitude.hpp).
 //
 // audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
 // order accepted, empty unless cause is a catalogue effect; "finding" the index into

@@ -114,8 +114,9 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   std::size_t screened = 0;
   for (const auto& spec : catalogue) {
     if (options.progress)
-      options.progress("screen the effect catalogue (round " + std::to_string(round) + ")", screened++,
-                       catalogue.size());
+      options.progress(round == 1 ? std::string("screen the effect catalogue")
+                                  : "screen the effect catalogue on top of round " + std::to_string(round - 1),
+                       screened++, catalogue.size());
     if (std::any_of(base.begin(), base.end(), [&](const sim::Effect& e) { return e.name == spec.name; })) continue;
     for (int channel : spec.has_channel ? std::vector<int>{1, 2} : std::vector<int>{0}) {
       Candidate best{{}, INFINITY};
@@ -123,8 +124,8 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
         // Matched to the residual of the current model; the search replays the mode alone, so
         // on top of accepted effects its start is costed again with them.
         const ModeStart mode = search_mode_start(measured, r.measured, base_loop.y, r.estimation, mode_f);
-        best = {mode.effect, base.empty() ? mode.cost
-                                          : estimation_cost(measured, r.measured, with_base(mode.effect), r.estimation)};
+        best = {mode.effect,
+                base.empty() ? mode.cost : estimation_cost(measured, r.measured, with_base(mode.effect), r.estimation)};
       }
       std::vector<sim::Effect> starts = starts_of(catalogue, spec, channel, harmonic_f);
       for (const auto& s : data_starts)

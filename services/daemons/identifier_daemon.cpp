@@ -106,7 +106,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
   struct Plant {
     DescribedWindows window;
     WindowFailures failures;
-    SampleGapReport gaps;                          // holes in the samples
+    SampleGapReport gaps;                           // holes in the samples
     std::optional<ContinuousEstimator> continuous;  // method rpem
     std::uint64_t seq = 0;
     bool served_twice = false;

@@ -30,7 +30,7 @@ TEST(DiagnosticsFamilies, EachFamilyBringsItsOwnCatalogue) {
   EXPECT_EQ(names, (std::vector<std::string>{"force_law", "coil_resistance", "amplifier_gain", "sensor_gain",
                                              "sensor_offset", "sensor_nonlinearity", "sensor_delay",
                                              "actuator_quantisation", "rotor_mass", "harmonic_disturbance"}));
-  EXPECT_EQ(effect_catalogue_of("amb1dof_voltage", "audit").size(), 11u);
+  EXPECT_EQ(effect_catalogue_of("amb1dof_voltage", "audit").size(), 12u);
   // A name both families use has each family's scale: a coil of 210 ohm, not of 17.5.
   EXPECT_EQ(
       sim::effect_spec(effect_catalogue_of("maglev1coil_voltage", "audit"), "coil_resistance").parameters[0].scale,
