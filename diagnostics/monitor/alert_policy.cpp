@@ -11,11 +11,13 @@ namespace {
 
 constexpr double kErrorMargin = 2.0;  // standard errors of a level (alert_policy.hpp)
 
-// "20", "5.0", "0.4": whole percent from 10 % on, one decimal below.
+// "20", "5.0", "0.032": whole percent from 10 % on, one decimal from 1 %, two significant
+// digits below: a parameter estimated to 1e-4 (an amplifier gain) alarms on changes that one
+// decimal would print as "0.0 %".
 std::string percent(double fraction) {
   const double p = std::abs(fraction) * 100.0;
   char text[32];
-  std::snprintf(text, sizeof text, p >= 10.0 ? "%.0f" : "%.1f", p);
+  std::snprintf(text, sizeof text, p >= 10.0 ? "%.0f" : p >= 1.0 ? "%.1f" : "%.2g", p);
   return text;
 }
 

@@ -25,6 +25,19 @@ Alert make_alert(double time, const std::string& plant_id, const std::string& pa
   return a;
 }
 
+// The parameters and exact values of a window's estimates (FNV-1a over their bytes).
+std::size_t estimates_hash(const EstimateWindow& w) {
+  std::size_t h = 14695981039346656037ull;
+  const auto mix = [&](const void* data, std::size_t size) {
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ static_cast<const unsigned char*>(data)[i]) * 1099511628211ull;
+  };
+  for (const ParameterEstimate& e : w.estimates) {
+    mix(e.parameter.data(), e.parameter.size() + 1);
+    mix(&e.value, sizeof e.value);
+  }
+  return h;
+}
+
 }  // namespace
 
 void EngineConfig::validate() const {
@@ -56,10 +69,17 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
   SeriesMap next = series_;
   Batch batch;
   batch.windows.assign(windows.begin(), windows.end());
+  std::vector<std::pair<std::string, std::size_t>> new_hashes;  // remembered once stored
   for (const EstimateWindow& w : windows) {
+    const std::size_t hash = estimates_hash(w);
+    const auto seen = seen_.find(w.plant_id);
+    const bool repeated =
+        (seen != seen_.end() && seen->second.hashes.count(hash)) ||
+        std::find(new_hashes.begin(), new_hashes.end(), std::pair(w.plant_id, hash)) != new_hashes.end();
+    if (!repeated) new_hashes.emplace_back(w.plant_id, hash);
     for (const ParameterEstimate& e : w.estimates) {
       Series& s = series(next, w.plant_id, e.parameter);
-      if (s.monitor.update(w.time, e.value, e.sigma))
+      if (!repeated && s.monitor.update(w.time, e.value, e.sigma))
         batch.baselines.push_back({w.plant_id, e.parameter, *s.monitor.baseline(), w.time});
       s.last_time = w.time;
       s.last_value = e.value;
@@ -69,6 +89,15 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
   }
   store_.write(batch);
   series_ = std::move(next);
+  for (const auto& [plant_id, hash] : new_hashes) {
+    SeenWindows& seen = seen_[plant_id];
+    seen.order.push_back(hash);
+    seen.hashes.insert(hash);
+    if (seen.order.size() > kRememberedWindows) {
+      seen.hashes.erase(seen.order.front());
+      seen.order.pop_front();
+    }
+  }
   return batch.alerts;
 }
 

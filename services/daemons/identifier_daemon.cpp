@@ -32,7 +32,7 @@ struct IdentifierConfig {
 IdentifierConfig identifier_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "identifier config",
                       {"plants", "method", "window", "settle", "transient_samples", "failing_consecutive",
-                       "failing_recent", "failing_fraction", "publish_rate", "forgetting"});
+                       "failing_recent", "failing_fraction", "publish_rate", "forgetting", "jackknife"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -40,6 +40,13 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
     throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.windows.settle));
   c.identify = window_identify_options(config_value<std::string>(j, "method", kDefaultWindowMethod),
                                        Eigen::Index(config_value(j, "transient_samples", 0)));
+  // okid/closed-loop/projection report no uncertainty without it, and the diagnostics then
+  // judge every window by the scatter of the baseline's, whatever the excitation of the window.
+  const int jackknife = config_value(j, "jackknife", 0);
+  if (jackknife < 0 || jackknife == 1)
+    throw Error("identifier config: jackknife must be 0 (no uncertainty) or >= 2 segments, got " +
+                std::to_string(jackknife));
+  c.identify.jackknife_segments = jackknife;
   if (!(c.windows.window > 0))
     throw Error("identifier config: window must be > 0 s, got " + std::to_string(c.windows.window));
   if (c.identify.method == "rpem") {

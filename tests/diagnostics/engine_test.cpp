@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <optional>
+#include <regex>
 #include <set>
 
 #include "core/error.hpp"
@@ -14,6 +15,7 @@ namespace ambid::diag {
 namespace {
 
 using testing::fresh_store_path;
+using testing::nominal;
 using testing::SyntheticPlant;
 
 constexpr std::size_t kChangeAt = 100;  // learning takes windows 0..49
@@ -148,6 +150,47 @@ TEST(DiagnosticsEngine, NoAlarmOnNominalData) {
     }
   }
   EXPECT_EQ(not_ok, 0);
+}
+
+// Issue 18 soak: a replayed 0.5 s record gave one window per loop, the same R1 (-1.6 baseline
+// sigmas) 966 times, and the CUSUM summed it into "R1 5 % below baseline". The same data
+// identified again is history, not new evidence; a new window after it is watched as before.
+TEST(DiagnosticsEngine, RepeatedEstimatesOfTheSameDataAreStoredButNotNewEvidence) {
+  TrendStore store(fresh_store_path("repeated"));
+  DiagnosticsEngine engine(store);
+  SyntheticPlant plant("bearing-A", 27, 0.01);
+  engine.process(plant.windows(0, 50));
+  EstimateWindow replayed = plant.window(50);
+  for (ParameterEstimate& e : replayed.estimates)
+    e.value = nominal(e.parameter) * (e.parameter == "R1" ? 1.0 - 1.6 * 0.01 : 1.0 + 0.9 * 0.01);
+  std::vector<Alert> alerts;
+  for (std::size_t n = 50; n < 450; ++n) {
+    replayed.time = static_cast<double>(n);
+    for (const Alert& a : engine.process(replayed)) alerts.push_back(a);
+  }
+  for (const Alert& a : alerts) ADD_FAILURE() << to_json(a).dump();
+  EXPECT_EQ(store.history("bearing-A", "R1").size(), 450u);
+  // Fresh windows with a real +20 % step of R1 are still seen at once.
+  plant.change = [](const std::string& p, std::size_t) { return p == "R1" ? 0.2 : 0.0; };
+  std::optional<Level> r1;
+  for (std::size_t n = 450; n < 455; ++n)
+    for (const Alert& a : engine.process(plant.window(n)))
+      if (a.parameter == "R1") r1 = a.level;
+  EXPECT_EQ(r1, Level::error);
+}
+
+// Issue 18 soak: "kw1 amplifier_gain 0.0 % ... " alerts. An amplifier gain is estimated to
+// 1e-5 here, so a +0.03 % step is 30 sigma and alarms; the message says how large it is.
+TEST(DiagnosticsEngine, MessageOfASmallStepOfAPreciseParameterNamesItsSize) {
+  TrendStore store(fresh_store_path("small_step"));
+  DiagnosticsEngine engine(store);
+  SyntheticPlant plant("bearing-A", 28, 1e-5);
+  plant.change = [](const std::string& p, std::size_t n) { return p == "kw1" && n >= kChangeAt ? 3e-4 : 0.0; };
+  std::string message;
+  for (const Alert& a : engine.process(plant.windows(0, kChangeAt + 5)))
+    if (a.parameter == "kw1" && message.empty()) message = a.message;
+  // 0.03 % +- 1 sigma of one window (0.001 %), to two significant digits.
+  EXPECT_TRUE(std::regex_search(message, std::regex(R"( 0\.0(2[7-9]|3|3[0-3]) % above baseline \(step\))"))) << message;
 }
 
 TEST(DiagnosticsEngine, CommonModeOfForceFactorsIsSensorGain) {

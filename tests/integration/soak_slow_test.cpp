@@ -107,6 +107,10 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   std::mt19937_64 random(2026);
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random); };
   Stack stack("soak", kDomain);
+  // Every window with its uncertainty (the closed-loop method's segment jackknife): the sources
+  // and excitations below differ in amplitude (0.05-1 V), and a window's scatter with them.
+  std::ofstream(stack.dir() / "identifier.json")
+      << R"({"window": 0.25, "settle": 0.25, "method": "closed-loop", "jackknife": 4})";
   const std::string scenarios = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/";
   const std::string quiet = scenarios + "quiet-bearing.json";
   const std::string second = (stack.dir() / "quiet-seed-7.json").string();
