@@ -35,11 +35,13 @@ using ::testing::Not;
 // different windows per replayed record, enough for the diagnostics' 40 learning windows to
 // see the spread of the estimates (a 1 s record replayed over and over repeats 3 windows,
 // whose spread is no noise model).
+// 12 s: 47 distinct 0.25 s windows, more than the harness's 40 learning windows (a replay's
+// repeated windows are stored but are no new evidence for the baseline).
 std::string record(const Stack& stack, const std::string& controller) {
   const std::string stem = (stack.dir() / controller).string();
   const CommandResult r = run_ambid("sim --controller " + controller +
                                     " --excitation prbs --amplitude 1.0 --position-noise 1e-9 --current-noise 1e-6"
-                                    " --duration 10.0 --seed 7 --out " +
+                                    " --duration 12.0 --seed 7 --out " +
                                     stem);
   EXPECT_EQ(r.status, 0) << r.output;
   return stem + ".json";
