@@ -35,14 +35,12 @@ using ::testing::Not;
 // different windows per replayed record, enough for the diagnostics' 40 learning windows to
 // see the spread of the estimates (a 1 s record replayed over and over repeats 3 windows,
 // whose spread is no noise model).
-// 12 s: 47 distinct 0.25 s windows, more than the harness's 40 learning windows (a replay's
-// repeated windows are stored but are no new evidence for the baseline).
-std::string record(const Stack& stack, const std::string& controller) {
+std::string record(const Stack& stack, const std::string& controller, double duration = 10.0) {
   const std::string stem = (stack.dir() / controller).string();
   const CommandResult r = run_ambid("sim --controller " + controller +
                                     " --excitation prbs --amplitude 1.0 --position-noise 1e-9 --current-noise 1e-6"
-                                    " --duration 12.0 --seed 7 --out " +
-                                    stem);
+                                    " --duration " +
+                                    std::to_string(duration) + " --seed 7 --out " + stem);
   EXPECT_EQ(r.status, 0) << r.output;
   return stem + ".json";
 }
@@ -161,7 +159,9 @@ TEST(DescriptionStack, LateIdentifierOtherVendorSwapOfControllerQuietCoilFaultEr
 // The same data under a sidecar whose nominal R1 is 21 ohm: another bearing for the plant id.
 TEST(DescriptionStack, AnotherBearingStartsANewBaselineAndTheAlertsSaySo) {
   Stack stack("description_bearing", 168);
-  const std::string lqr = record(stack, "lqr");
+  // 12 s: 47 distinct 0.25 s windows, more than the harness's 40 learning windows (a looping
+  // replay's repeated windows are stored but are no new evidence for the baseline).
+  const std::string lqr = record(stack, "lqr", 12.0);
   nlohmann::json sidecar = nlohmann::json::parse(std::ifstream(lqr));
   sidecar["plant"]["parameters"]["R1"] = 21.0;
   std::filesystem::copy_file(stack.dir() / "lqr.csv", stack.dir() / "other.csv");
