@@ -28,10 +28,11 @@ TEST(IdentifierGap, AStalledIdentifierAlertsTheSamplesItMissed) {
   EXPECT_THAT(gap.output, HasSubstr("bearing-1  samples  history_gap"));
   EXPECT_THAT(gap.output, HasSubstr("a hole in the identified history"));
   EXPECT_THAT(stack.log("identifier"), HasSubstr("a hole in the identified history"));
-  // Seconds of plant time are missed (the samples topic kept 64 batches, 3.2 s; 3 s of wall
-  // time are up to 30 s of plant time, less when this machine slows the plant down).
+  // At least one whole batch (500 samples) is counted missing. How many depends on how fast
+  // this machine runs the plant during the stall (up to 30 s of plant time; 2.1 s and 0.75 s
+  // on a loaded 2-core machine), so no larger bound holds.
   const double missed = metric(http_get(19213, "/metrics"), "ambid_samples_missed_total{role=\"identifier\"}");
-  EXPECT_GT(missed, 5.0 / 1e-4) << "samples of 1e-4 s";
+  EXPECT_GE(missed, 500.0) << "samples of 1e-4 s";
   const CommandResult status = stack.ambid("status --wait 2 --expect plant,identifier");
   EXPECT_THAT(status.output, HasSubstr("identifier): WARN missed")) << status.output;
   EXPECT_TRUE(stack.running("identifier"));
