@@ -1,7 +1,6 @@
 #include "fuzz/bus_messages.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <exception>
@@ -17,6 +16,7 @@
 #include "core/error.hpp"
 #include "core/experiment_io.hpp"
 #include "diagnostics/fault_signatures.hpp"
+#include "fuzz/scratch.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/bus/validate.hpp"
 #include "services/convert/alert.hpp"
@@ -307,23 +307,8 @@ Message mutated(Message m, std::mt19937_64& random, Mutator& bytes) {
 
 const std::string kPlant = "bearing-1";
 
-class Scratch {
- public:
-  Scratch() : dir_(fs::temp_directory_path() / ("ambid-fuzz-bus-" + std::to_string(::getpid()))) {
-    fs::create_directories(dir_);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  fs::path file(const std::string& name) const { return dir_ / name; }
-
- private:
-  fs::path dir_;
-};
-
 const Scratch& scratch() {
-  static const Scratch s;
+  static const Scratch s("ambid-fuzz-bus-");
   return s;
 }
 

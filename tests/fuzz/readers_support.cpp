@@ -1,7 +1,5 @@
 #include "fuzz/readers.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +8,7 @@
 #include "core/experiment_file.hpp"
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
+#include "fuzz/scratch.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/daemons/scenario_json.hpp"
 #include "services/rig/rig_frame.hpp"
@@ -19,24 +18,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A folder of its own per process, removed at exit.
-class Scratch {
- public:
-  Scratch() : dir_(fs::temp_directory_path() / ("ambid-fuzz-" + std::to_string(::getpid()))) {
-    fs::create_directories(dir_);
-  }
-  ~Scratch() {
-    std::error_code ignored;
-    fs::remove_all(dir_, ignored);
-  }
-  fs::path file(const std::string& name) const { return dir_ / name; }
-
- private:
-  fs::path dir_;
-};
-
 const Scratch& scratch() {
-  static const Scratch s;
+  static const Scratch s("ambid-fuzz-");
   return s;
 }
 
