@@ -18,4 +18,10 @@ class InsufficientData : public Error {
   using Error::Error;
 };
 
+// "RxC": the size of a matrix (anything with rows() and cols()) in error messages.
+template <class Matrix>
+std::string dims(const Matrix& m) {
+  return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
+}
+
 }  // namespace ambid

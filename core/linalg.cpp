@@ -18,11 +18,6 @@ namespace ambid::linalg {
 namespace {
 
 template <class M>
-std::string dims(const M& m) {
-  return std::to_string(m.rows()) + "x" + std::to_string(m.cols());
-}
-
-template <class M>
 void require_square(const M& A, const char* who) {
   if (A.rows() != A.cols()) throw Error(std::string("linalg::") + who + ": matrix must be square, got " + dims(A));
 }

@@ -18,7 +18,6 @@ void require_finite(const Eigen::MatrixXd& m, const char* name) {
 
 void validate_abcd(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& C,
                    const Eigen::MatrixXd& D) {
-  auto dims = [](const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); };
   if (A.rows() != A.cols()) throw Error("state-space A must be square, got " + dims(A));
   if (B.rows() != A.rows())
     throw Error("state-space B must have " + std::to_string(A.rows()) + " rows (states), got " + dims(B));

@@ -15,14 +15,14 @@
 namespace ambid::ident {
 namespace {
 
-const std::string kWho = "rpem";
+const std::string kRpemWho = "rpem";
 constexpr const char* kFamily = "amb1dof_voltage";
 
 LoopSignals amb1dof_signals(const Experiment& e) {
   if (e.plant.model != kFamily)
-    throw Error(kWho + ": identifies " + kFamily + " only, got plant model '" + e.plant.model + "'");
+    throw Error(kRpemWho + ": identifies " + kFamily + " only, got plant model '" + e.plant.model + "'");
   const IdentificationFamily* family = find_identification_family(kFamily);
-  return loop_signals(e, family->y_names, family->u_names, kWho);
+  return loop_signals(e, family->y_names, family->u_names, kRpemWho);
 }
 
 Eigen::Vector3d spread_of(const Eigen::MatrixXd& y) {
@@ -30,7 +30,7 @@ Eigen::Vector3d spread_of(const Eigen::MatrixXd& y) {
   for (Eigen::Index j = 0; j < 3; ++j) {
     spread(j) = std::sqrt((y.col(j).array() - y.col(j).mean()).square().mean());
     if (!(spread(j) > 0.0))
-      throw InsufficientData(kWho + ": output " + std::to_string(j + 1) +
+      throw InsufficientData(kRpemWho + ": output " + std::to_string(j + 1) +
                              " of [x, i1, i2] does not vary in the first samples: no scale to start from");
   }
   return spread;
@@ -50,7 +50,7 @@ nlohmann::json rows(const Eigen::MatrixXd& m) {
 
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentifyOptions options) : options_(options) {
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0))
-    throw Error(kWho + ": forgetting must be in (0, 1], got " + std::to_string(options.forgetting));
+    throw Error(kRpemWho + ": forgetting must be in (0, 1], got " + std::to_string(options.forgetting));
 }
 RecursiveIdentification::~RecursiveIdentification() = default;
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentification&&) noexcept = default;
@@ -62,13 +62,13 @@ std::uint64_t RecursiveIdentification::projections() const { return estimator_ ?
 void RecursiveIdentification::add(const Experiment& stretch) {
   if (stretch.samples() == 0) return;
   const LoopSignals s = amb1dof_signals(stretch);
-  if (!s.y.allFinite() || !s.u.allFinite()) throw Error(kWho + ": a sample of x, i1, i2, u1 or u2 is not finite");
+  if (!s.y.allFinite() || !s.u.allFinite()) throw Error(kRpemWho + ": a sample of x, i1, i2, u1 or u2 is not finite");
   const bool same_record = estimator_ && stretch.plant.model == plant_model_ && stretch.sample_time == sample_time_;
   if (!same_record) {
-    const Amb1dofNominal nominal = amb1dof_nominal(stretch, kWho);
+    const Amb1dofNominal nominal = amb1dof_nominal(stretch, kRpemWho);
     const Eigen::Vector3d spread = spread_of(s.y);
     const PemWarmStart start =
-        amb1dof_cold_start(amb1dof_nominal_structure(stretch, kWho), spread, stretch.sample_time);
+        amb1dof_cold_start(amb1dof_nominal_structure(stretch, kRpemWho), spread, stretch.sample_time);
     Amb1dofRecursivePemOptions o;
     o.forgetting = options_.forgetting;
     if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
@@ -84,12 +84,12 @@ void RecursiveIdentification::add(const Experiment& stretch) {
 }
 
 WindowIdentification RecursiveIdentification::estimate() const {
-  if (!estimator_ || estimator_->samples() == 0) throw InsufficientData(kWho + ": no samples yet");
+  if (!estimator_ || estimator_->samples() == 0) throw InsufficientData(kRpemWho + ": no samples yet");
   const Amb1dofRecursivePem& r = *estimator_;
   WindowIdentification out;
   Model& model = out.model;
   model.plant_model = plant_model_;
-  model.method = kWho;
+  model.method = kRpemWho;
   model.sample_time = sample_time_;
   const Eigen::Matrix<double, 9, 1> v = r.v();
   const Eigen::Matrix<double, 9, 9> covariance = r.covariance();
@@ -122,8 +122,8 @@ WindowIdentification RecursiveIdentification::estimate() const {
                                 {"offset", {offset(0), offset(1), offset(2)}},
                                 {"predictor_gain", rows(r.predictor_gain())},
                                 {"residual_rms", {rms(0), rms(1), rms(2)}}};
-  out.parameters = with_uncertainty(model.parameters, model.uncertainty, kWho);
-  out.physical = with_uncertainty(model.physical, model.uncertainty, kWho);
+  out.parameters = with_uncertainty(model.parameters, model.uncertainty, kRpemWho);
+  out.physical = with_uncertainty(model.physical, model.uncertainty, kRpemWho);
   return out;
 }
 

@@ -32,7 +32,7 @@ Amb1dofParameters with_parameter_effects(Amb1dofParameters p, const std::vector<
   return p;
 }
 
-void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+void require_extended_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   if (v.size() != n) {
     std::ostringstream msg;
     msg << "amb1dof_voltage with effects: " << what << " must have " << n << " entries, got " << v.size();
@@ -156,9 +156,9 @@ Amb1dofExtended::Continuous Amb1dofExtended::continuous_derivative(const Continu
 
 Eigen::VectorXd Amb1dofExtended::derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                             const Eigen::VectorXd& w) const {
-  require_size(x, continuous_states_ + 2 * delay_length_, "state");
-  require_size(u, 2, "input (u1, u2)");
-  require_size(w, 1, "disturbance (Fz)");
+  require_extended_size(x, continuous_states_ + 2 * delay_length_, "state");
+  require_extended_size(u, 2, "input (u1, u2)");
+  require_extended_size(w, 1, "disturbance (Fz)");
   Eigen::VectorXd out = Eigen::VectorXd::Zero(x.size());  // the delay line is discrete: 0
   out.head(continuous_states_) =
       continuous_derivative(Continuous(x.head(continuous_states_)), Eigen::Vector2d(u), w[0]);
@@ -174,7 +174,7 @@ double Amb1dofExtended::sensed_velocity(const Eigen::VectorXd& x) const {
 }
 
 Eigen::VectorXd Amb1dofExtended::output(const Eigen::VectorXd& x) const {
-  require_size(x, continuous_states_ + 2 * delay_length_, "state");
+  require_extended_size(x, continuous_states_ + 2 * delay_length_, "state");
   // value(j): the sensed position j samples ago (j = 0: now).
   // value(j), slope(j): the sensed position and velocity j samples ago (j = 0: now).
   auto value = [&](int j) { return j == 0 ? sensed_position(x) : x[delay_state_ + j - 1]; };
@@ -194,9 +194,9 @@ Eigen::VectorXd Amb1dofExtended::output(const Eigen::VectorXd& x) const {
 
 void Amb1dofExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w,
                               double sample_time, int substeps) const {
-  require_size(x, continuous_states_ + 2 * delay_length_, "state");
-  require_size(u, 2, "input (u1, u2)");
-  require_size(w, 1, "disturbance (Fz)");
+  require_extended_size(x, continuous_states_ + 2 * delay_length_, "state");
+  require_extended_size(u, 2, "input (u1, u2)");
+  require_extended_size(w, 1, "disturbance (Fz)");
   if (delay_length_ > 0) {
     if (std::abs(sample_time - sample_time_) > 1e-9 * sample_time_)
       throw Error("effect sensor_delay was set up for sample time " + std::to_string(sample_time_) +

@@ -11,7 +11,7 @@
 namespace ambid::sim {
 namespace {
 
-std::string join(const std::vector<std::string>& names) {
+std::string join_signals(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
   return s;
@@ -31,15 +31,16 @@ InputRoute route_of(const std::string& name, const Experiment& header) {
   if (auto i = find(header.y_names); i < std::ssize(header.y_names)) return {Source::output, i};
   if (auto i = find(header.u_names); i < std::ssize(header.u_names)) return {Source::input, i};
   if (auto i = find(header.r_names); i < std::ssize(header.r_names)) return {Source::excitation, i};
-  throw Error("closed loop: controller input '" + name + "' is not a signal of the experiment (y: " +
-              join(header.y_names) + "; u: " + join(header.u_names) + "; r: " + join(header.r_names) + ")");
+  throw Error("closed loop: controller input '" + name +
+              "' is not a signal of the experiment (y: " + join_signals(header.y_names) +
+              "; u: " + join_signals(header.u_names) + "; r: " + join_signals(header.r_names) + ")");
 }
 
 void check_names(const char* what, const std::vector<std::string>& header_names,
                  const std::vector<std::string>& plant_names) {
   if (header_names != plant_names)
-    throw Error(std::string("closed loop: experiment ") + what + " signals (" + join(header_names) +
-                ") must be the plant's (" + join(plant_names) + ")");
+    throw Error(std::string("closed loop: experiment ") + what + " signals (" + join_signals(header_names) +
+                ") must be the plant's (" + join_signals(plant_names) + ")");
 }
 
 void check_size(const char* what, const Eigen::VectorXd& v, Eigen::Index expected) {
@@ -153,8 +154,8 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   check_names("y", header.y_names, truth.output_names());
   check_names("u", header.u_names, truth.input_names());
   if (ctrl.outputs != header.u_names)
-    throw Error("closed loop: controller outputs (" + join(ctrl.outputs) + ") must be the plant inputs (" +
-                join(header.u_names) + ")");
+    throw Error("closed loop: controller outputs (" + join_signals(ctrl.outputs) + ") must be the plant inputs (" +
+                join_signals(header.u_names) + ")");
   const double dt = header.sample_time;
   if (!(dt > 0.0)) throw Error("closed loop: sample_time must be positive, got " + std::to_string(dt));
   if (std::abs(ctrl.sample_time - dt) > 1e-9 * dt)

@@ -14,9 +14,7 @@ namespace {
 constexpr int kMaxIterations = 100;
 constexpr double kConvergence = 1e-14;
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
-void require(bool ok, const std::string& message) {
+void require_dare(bool ok, const std::string& message) {
   if (!ok) throw Error("DARE: " + message);
 }
 
@@ -25,31 +23,31 @@ void require_symmetric(const Eigen::MatrixXd& M, const char* name) {
   if (asym > 1e-10 * std::max(1.0, M.norm())) {
     std::ostringstream msg;
     msg << name << " must be symmetric; ||" << name << " - " << name << "'|| = " << asym;
-    require(false, msg.str());
+    require_dare(false, msg.str());
   }
 }
 
 void check_inputs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eigen::MatrixXd& Q,
                   const Eigen::MatrixXd& R, const Eigen::MatrixXd& N) {
   const Eigen::Index n = A.rows(), m = B.cols();
-  require(A.rows() == A.cols(), "A must be square, got " + dims(A));
-  require(n > 0, "A is empty");
-  require(B.rows() == n && m > 0, "B must have " + std::to_string(n) + " rows, got " + dims(B));
-  require(Q.rows() == n && Q.cols() == n,
-          "Q must be " + std::to_string(n) + "x" + std::to_string(n) + ", got " + dims(Q));
-  require(R.rows() == m && R.cols() == m,
-          "R must be " + std::to_string(m) + "x" + std::to_string(m) + ", got " + dims(R));
-  require(N.size() == 0 || (N.rows() == n && N.cols() == m),
-          "N must be empty or " + std::to_string(n) + "x" + std::to_string(m) + ", got " + dims(N));
-  require(A.allFinite() && B.allFinite() && Q.allFinite() && R.allFinite() && N.allFinite(),
-          "a matrix has a non-finite entry");
+  require_dare(A.rows() == A.cols(), "A must be square, got " + dims(A));
+  require_dare(n > 0, "A is empty");
+  require_dare(B.rows() == n && m > 0, "B must have " + std::to_string(n) + " rows, got " + dims(B));
+  require_dare(Q.rows() == n && Q.cols() == n,
+               "Q must be " + std::to_string(n) + "x" + std::to_string(n) + ", got " + dims(Q));
+  require_dare(R.rows() == m && R.cols() == m,
+               "R must be " + std::to_string(m) + "x" + std::to_string(m) + ", got " + dims(R));
+  require_dare(N.size() == 0 || (N.rows() == n && N.cols() == m),
+               "N must be empty or " + std::to_string(n) + "x" + std::to_string(m) + ", got " + dims(N));
+  require_dare(A.allFinite() && B.allFinite() && Q.allFinite() && R.allFinite() && N.allFinite(),
+               "a matrix has a non-finite entry");
   require_symmetric(Q, "Q");
   require_symmetric(R, "R");
   const double r_lowest = linalg::symmetric_eigenvalues(R).minCoeff();
   if (!(r_lowest > 1e-14 * std::max(1.0, R.norm()))) {
     std::ostringstream msg;
     msg << "R must be positive definite; smallest eigenvalue " << r_lowest;
-    require(false, msg.str());
+    require_dare(false, msg.str());
   }
   Eigen::MatrixXd joint = Eigen::MatrixXd::Zero(n + m, n + m);
   joint.topLeftCorner(n, n) = Q;
@@ -63,7 +61,7 @@ void check_inputs(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, const Eige
   if (lowest < -1e-10 * std::max(1.0, joint.norm())) {
     std::ostringstream msg;
     msg << "[Q N; N' R] must be positive semidefinite; smallest eigenvalue " << lowest;
-    require(false, msg.str());
+    require_dare(false, msg.str());
   }
 }
 
@@ -86,7 +84,7 @@ void check_stabilisable(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
       std::ostringstream msg;
       msg << "the pair (A, B) is not stabilisable: eigenvalue " << z.real() << (z.imag() < 0 ? " - " : " + ")
           << std::abs(z.imag()) << "i (|z| = " << std::abs(z) << ") is not controllable";
-      require(false, msg.str());
+      require_dare(false, msg.str());
     }
   }
 }
@@ -131,9 +129,9 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, c
     Ak = Ak * WA;
     H_next = 0.5 * (H_next + H_next.transpose());
     G_next = 0.5 * (G_next + G_next.transpose());
-    require(H_next.allFinite() && G_next.allFinite() && Ak.allFinite(),
-            "doubling iteration diverged (non-finite iterate at step " + std::to_string(k + 1) +
-                "); no stabilising solution");
+    require_dare(H_next.allFinite() && G_next.allFinite() && Ak.allFinite(),
+                 "doubling iteration diverged (non-finite iterate at step " + std::to_string(k + 1) +
+                     "); no stabilising solution");
     change = (H_next - Hk).norm();
     converged = change <= kConvergence * std::max(1.0, H_next.norm());
     Hk = std::move(H_next);
@@ -143,7 +141,7 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, c
     std::ostringstream msg;
     msg << "doubling iteration did not converge in " << kMaxIterations << " steps (last relative change "
         << change / std::max(1.0, Hk.norm()) << "); an eigenvalue on the unit circle may be unobserved by Q";
-    require(false, msg.str());
+    require_dare(false, msg.str());
   }
 
   // The solution must be stabilising.
@@ -155,7 +153,7 @@ Eigen::MatrixXd solve_dare(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B, c
     std::ostringstream msg;
     msg << "no stabilising solution: closed-loop spectral radius " << radius
         << " (a mode on the unit circle is not seen by Q)";
-    require(false, msg.str());
+    require_dare(false, msg.str());
   }
   return Hk;
 }

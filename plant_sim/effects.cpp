@@ -74,7 +74,7 @@ std::vector<EffectSpec> build_catalogue() {
   };
 }
 
-std::string join(const std::vector<std::string>& names) {
+std::string join_names(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
   return s;
@@ -111,7 +111,7 @@ const EffectSpec& effect_spec(const std::vector<EffectSpec>& catalogue, const st
     if (e.name == name) return e;
     names.push_back(e.name);
   }
-  throw Error("unknown effect '" + name + "' (known: " + join(names) + ")");
+  throw Error("unknown effect '" + name + "' (known: " + join_names(names) + ")");
 }
 
 double Effect::at(const std::string& parameter) const {
@@ -149,7 +149,7 @@ Effect make_effect(const std::vector<EffectSpec>& catalogue, const std::string& 
       std::vector<std::string> valid;
       for (const auto& s : spec.parameters) valid.push_back(s.name);
       if (spec.has_channel) valid.push_back("channel");
-      throw Error("effect " + name + " has no parameter '" + key + "' (valid: " + join(valid) + ")");
+      throw Error("effect " + name + " has no parameter '" + key + "' (valid: " + join_names(valid) + ")");
     }
     if (!std::isfinite(value) || value < p->lower || value > p->upper) {
       std::ostringstream msg;

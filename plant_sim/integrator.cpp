@@ -9,7 +9,7 @@
 namespace ambid::sim {
 namespace {
 
-void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+void require_state_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   if (v.size() != n) {
     std::ostringstream msg;
     msg << "integrate_sample: " << what << " must have " << n << " entries, got " << v.size();
@@ -25,9 +25,9 @@ void check_arguments(const Eigen::VectorXd& x, const Eigen::VectorXd& u, const E
     throw Error(msg.str());
   }
   if (substeps < 1) throw Error("integrate_sample: substeps must be at least 1, got " + std::to_string(substeps));
-  require_size(x, states, "state");
-  require_size(u, inputs, "input");
-  require_size(w, disturbances, "disturbance");
+  require_state_size(x, states, "state");
+  require_state_size(u, inputs, "input");
+  require_state_size(w, disturbances, "disturbance");
 }
 
 }  // namespace
@@ -51,7 +51,7 @@ void Rk4Integrator::integrate_sample(Eigen::VectorXd& x, const Eigen::VectorXd& 
   const double h = sample_time / substeps;
   auto eval = [&](Eigen::VectorXd& k, const Eigen::VectorXd& at) {
     k = plant_.derivative(at, u, w);  // move-assigned: no copy
-    require_size(k, xt_.size(), "plant derivative");
+    require_state_size(k, xt_.size(), "plant derivative");
   };
   for (int s = 0; s < substeps; ++s) {
     eval(k1_, x);

@@ -22,7 +22,7 @@ void require_names(const std::vector<std::string>& names, Eigen::Index count, co
   }
 }
 
-void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+void require_plant_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   if (v.size() != n) {
     std::ostringstream msg;
     msg << "linear plant: " << what << " must have " << n << " entries, got " << v.size();
@@ -64,9 +64,9 @@ LinearPlant::LinearPlant(NamedSystem named, Eigen::MatrixXd disturbance_matrix,
 Eigen::VectorXd LinearPlant::derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                         const Eigen::VectorXd& w) const {
   const ContinuousSystem& s = named_.system;
-  require_size(x, s.states(), "state");
-  require_size(u, s.inputs(), "input");
-  require_size(w, E_.cols(), "disturbance");
+  require_plant_size(x, s.states(), "state");
+  require_plant_size(u, s.inputs(), "input");
+  require_plant_size(w, E_.cols(), "disturbance");
   return s.A * x + s.B * u + E_ * w;
 }
 
@@ -77,7 +77,7 @@ Eigen::VectorXd LinearPlant::output(const Eigen::VectorXd& x) const {
 }
 
 void LinearPlant::output_into(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  require_size(x, named_.system.states(), "state");
+  require_plant_size(x, named_.system.states(), "state");
   y.noalias() = named_.system.C * x;
 }
 

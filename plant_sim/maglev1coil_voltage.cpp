@@ -8,7 +8,7 @@
 namespace ambid::sim {
 namespace {
 
-void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+void require_maglev_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   if (v.size() != n) {
     std::ostringstream msg;
     msg << "maglev1coil_voltage: " << what << " must have " << n << " entries, got " << v.size();
@@ -37,9 +37,9 @@ std::vector<std::string> Maglev1coilVoltage::disturbance_names() const { return 
 
 Eigen::VectorXd Maglev1coilVoltage::derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                                const Eigen::VectorXd& w) const {
-  require_size(x, 3, "state (x, x_dot, i)");
-  require_size(u, 1, "input (u)");
-  require_size(w, 1, "disturbance (Fz)");
+  require_maglev_size(x, 3, "state (x, x_dot, i)");
+  require_maglev_size(u, 1, "input (u)");
+  require_maglev_size(w, 1, "disturbance (Fz)");
   const double gap = x[0], velocity = x[1], current = x[2];
   if (!(gap > 0.0)) {
     std::ostringstream msg;
@@ -53,7 +53,7 @@ Eigen::VectorXd Maglev1coilVoltage::derivative(const Eigen::VectorXd& x, const E
 }
 
 Eigen::VectorXd Maglev1coilVoltage::output(const Eigen::VectorXd& x) const {
-  require_size(x, 3, "state (x, x_dot, i)");
+  require_maglev_size(x, 3, "state (x, x_dot, i)");
   return Eigen::Vector2d(x[0], x[2]);
 }
 

@@ -13,7 +13,7 @@
 namespace ambid::sim {
 namespace {
 
-void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
+void require_extended_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   if (v.size() != n) {
     std::ostringstream msg;
     msg << "maglev1coil_voltage with effects: " << what << " must have " << n << " entries, got " << v.size();
@@ -21,7 +21,7 @@ void require_size(const Eigen::VectorXd& v, Eigen::Index n, const char* what) {
   }
 }
 
-[[noreturn]] void fail(const std::string& what, double value) {
+[[noreturn]] void fail_extended(const std::string& what, double value) {
   std::ostringstream msg;
   msg << "maglev1coil_voltage with effects: " << what << ", got " << value;
   throw Error(msg.str());
@@ -34,8 +34,8 @@ MaglevExtended::MaglevExtended(const MaglevParameters& nominal, const MaglevOper
     : p_(nominal), x0_(point.x), sample_time_(sample_time) {
   nominal.validate();
   if (!(point.x > nominal.x_min && point.x < nominal.x_max))
-    fail("the operating gap must lie between the stops", point.x);
-  if (measured && !(point.i > 0.0)) fail("the measured operating current must be positive", point.i);
+    fail_extended("the operating gap must lie between the stops", point.x);
+  if (measured && !(point.i > 0.0)) fail_extended("the measured operating current must be positive", point.i);
   const auto& catalogue = maglev_effect_catalogue();
   std::set<std::string> seen;
   for (const auto& e : effects) {
@@ -66,7 +66,7 @@ MaglevExtended::MaglevExtended(const MaglevParameters& nominal, const MaglevOper
       harmonic_sin_ = e.at("Fs");
     } else if (e.name == "sensor_delay") {
       if (!(sample_time > 0.0) || !std::isfinite(sample_time))
-        fail("effect sensor_delay needs a positive sample time", sample_time);
+        fail_extended("effect sensor_delay needs a positive sample time", sample_time);
       const double samples = e.at("delay") / sample_time;
       delay_whole_ = int(std::floor(samples + 1e-9));
       delay_fraction_ = std::max(0.0, samples - delay_whole_);
@@ -84,10 +84,10 @@ MaglevExtended::MaglevExtended(const MaglevParameters& nominal, const MaglevOper
   }
   // The true gap where the sensor reads x0: invert y = scale x0 (x/x0)^power + offset.
   const double reading = (x0_ - sensor_offset_) / (sensor_scale_ * x0_);
-  if (!(reading > 0.0)) fail("no gap gives the sensor reading x0 with these sensor effects", x0_);
+  if (!(reading > 0.0)) fail_extended("no gap gives the sensor reading x0 with these sensor effects", x0_);
   gap0_ = x0_ * std::pow(reading, 1.0 / sensor_power_);
   if (!(gap0_ > p_.x_min && gap0_ < p_.x_max))
-    fail("the sensor effects put the true operating gap outside the stops", gap0_);
+    fail_extended("the sensor effects put the true operating gap outside the stops", gap0_);
   // The force law's anchor (the header comment).
   const double anchor_gap = measured ? gap0_ : x0_;
   const double anchor_current = measured ? point.i : nominal.equilibrium_current(x0_);
@@ -136,17 +136,17 @@ MaglevExtended::Continuous MaglevExtended::continuous_derivative(const Continuou
 
 Eigen::VectorXd MaglevExtended::derivative(const Eigen::VectorXd& x, const Eigen::VectorXd& u,
                                            const Eigen::VectorXd& w) const {
-  require_size(x, continuous_states_ + delay_length_, "state");
-  require_size(u, 1, "input (u)");
-  require_size(w, 1, "disturbance (Fz)");
-  if (!(x[0] > 0.0)) fail("the gap must be positive", x[0]);
+  require_extended_size(x, continuous_states_ + delay_length_, "state");
+  require_extended_size(u, 1, "input (u)");
+  require_extended_size(w, 1, "disturbance (Fz)");
+  if (!(x[0] > 0.0)) fail_extended("the gap must be positive", x[0]);
   Eigen::VectorXd out = Eigen::VectorXd::Zero(x.size());  // the delay line is discrete: 0
   out.head(continuous_states_) = continuous_derivative(Continuous(x.head(continuous_states_)), u[0], w[0]);
   return out;
 }
 
 Eigen::VectorXd MaglevExtended::output(const Eigen::VectorXd& x) const {
-  require_size(x, continuous_states_ + delay_length_, "state");
+  require_extended_size(x, continuous_states_ + delay_length_, "state");
   // value(j): the reading j samples ago (j = 0: now).
   auto value = [&](int j) { return j == 0 ? sensed(x[0]) : x[delay_state_ + j - 1]; };
   double reading = value(delay_whole_);
@@ -156,9 +156,9 @@ Eigen::VectorXd MaglevExtended::output(const Eigen::VectorXd& x) const {
 
 void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
                              int substeps) const {
-  require_size(x, continuous_states_ + delay_length_, "state");
-  require_size(u, 1, "input (u)");
-  require_size(w, 1, "disturbance (Fz)");
+  require_extended_size(x, continuous_states_ + delay_length_, "state");
+  require_extended_size(u, 1, "input (u)");
+  require_extended_size(w, 1, "disturbance (Fz)");
   if (!(sample_time > 0.0) || !std::isfinite(sample_time) || substeps < 1)
     throw Error("maglev1coil_voltage with effects: sample time must be positive and substeps at least 1, got " +
                 std::to_string(sample_time) + " s and " + std::to_string(substeps));

@@ -8,7 +8,7 @@
 namespace ambid::sim {
 namespace {
 
-[[noreturn]] void fail(const char* what, double value) {
+[[noreturn]] void fail_linearization(const char* what, double value) {
   std::ostringstream msg;
   msg << "maglev1coil_voltage linearisation: " << what << ", got " << value;
   throw Error(msg.str());
@@ -16,9 +16,10 @@ namespace {
 
 MaglevLinearization at(const MaglevParameters& p, const MaglevOperatingPoint& op) {
   p.validate();
-  if (!(op.x > p.x_min && op.x < p.x_max)) fail("the operating gap must lie strictly between the stops", op.x);
-  if (!(op.i > 0.0) || !std::isfinite(op.i)) fail("the operating current must be positive", op.i);
-  if (!std::isfinite(op.u)) fail("the operating command must be finite", op.u);
+  if (!(op.x > p.x_min && op.x < p.x_max))
+    fail_linearization("the operating gap must lie strictly between the stops", op.x);
+  if (!(op.i > 0.0) || !std::isfinite(op.i)) fail_linearization("the operating current must be positive", op.i);
+  if (!std::isfinite(op.u)) fail_linearization("the operating command must be finite", op.u);
   MaglevLinearization out;
   out.point = op;
   out.Km = p.m * p.g * std::pow(op.x, p.n_x) / std::pow(op.i, p.n_i);

@@ -15,7 +15,7 @@
 namespace ambid::sim {
 namespace {
 
-[[noreturn]] void fail(const std::string& what, double value) {
+[[noreturn]] void fail_loop(const std::string& what, double value) {
   std::ostringstream msg;
   msg << "maglev simulation: " << what << ", got " << value;
   throw Error(msg.str());
@@ -24,19 +24,19 @@ namespace {
 void check(const MaglevParameters& truth, const MaglevRig& rig, const MaglevRunOptions& o) {
   truth.validate();
   rig.validate();
-  if (!(o.sample_time > 0.0) || !std::isfinite(o.sample_time)) fail("sample time must be positive", o.sample_time);
-  if (o.samples < 2) fail("the record needs at least 2 samples", double(o.samples));
+  if (!(o.sample_time > 0.0) || !std::isfinite(o.sample_time)) fail_loop("sample time must be positive", o.sample_time);
+  if (o.samples < 2) fail_loop("the record needs at least 2 samples", double(o.samples));
   if (o.levels.empty()) throw Error("maglev simulation: no reference levels given");
   for (const double level : o.levels)
     if (!(level > truth.x_min && level < truth.x_max))
-      fail("reference levels must lie strictly between the stops " + std::to_string(truth.x_min) + " and " +
-               std::to_string(truth.x_max) + " m",
-           level);
+      fail_loop("reference levels must lie strictly between the stops " + std::to_string(truth.x_min) + " and " +
+                    std::to_string(truth.x_max) + " m",
+                level);
   if (!(o.step_period >= o.sample_time) || !std::isfinite(o.step_period))
-    fail("the step period must be at least one sample", o.step_period);
+    fail_loop("the step period must be at least one sample", o.step_period);
   for (const double v : {o.noise_amplitude, o.position_noise, o.current_noise, o.force_noise})
-    if (!(v >= 0.0) || !std::isfinite(v)) fail("noise levels must be >= 0", v);
-  if (o.substeps < 1) fail("substeps must be at least 1", o.substeps);
+    if (!(v >= 0.0) || !std::isfinite(v)) fail_loop("noise levels must be >= 0", v);
+  if (o.substeps < 1) fail_loop("substeps must be at least 1", o.substeps);
 }
 
 // The message of a touch at time t with gap x.
@@ -100,7 +100,7 @@ MaglevRun run_maglev_rig(const MaglevParameters& truth, const MaglevParameters& 
     w(0) = o.force_noise * normal(rng);
     for (int s = 0; s < o.substeps; ++s) {
       integrator.integrate_sample(x, u, w, h, 1);
-      if (!x.allFinite()) fail("the plant state became non-finite at t", e.t(k) + (s + 1) * h);
+      if (!x.allFinite()) fail_loop("the plant state became non-finite at t", e.t(k) + (s + 1) * h);
       if (x(0) <= truth.x_min || x(0) >= truth.x_max) {
         run.ended = touch_message(truth, e.t(k) + (s + 1) * h, x(0));
         break;

@@ -9,20 +9,20 @@ namespace ambid::sim {
 namespace {
 
 // The one table tying the contract names to the members.
-struct Field {
+struct MaglevField {
   const char* name;
   double MaglevParameters::*member;
 };
-constexpr Field kFields[] = {
+constexpr MaglevField kMaglevFields[] = {
     {"m", &MaglevParameters::m},         {"g", &MaglevParameters::g},         {"R", &MaglevParameters::R},
     {"L", &MaglevParameters::L},         {"Km", &MaglevParameters::Km},       {"Ke", &MaglevParameters::Ke},
     {"kw", &MaglevParameters::kw},       {"n_i", &MaglevParameters::n_i},     {"n_x", &MaglevParameters::n_x},
     {"x_min", &MaglevParameters::x_min}, {"x_max", &MaglevParameters::x_max},
 };
 
-std::string valid_names() {
+std::string valid_maglev_names() {
   std::string out;
-  for (const auto& f : kFields) out += (out.empty() ? "" : ", ") + std::string(f.name);
+  for (const auto& f : kMaglevFields) out += (out.empty() ? "" : ", ") + std::string(f.name);
   return out;
 }
 
@@ -45,13 +45,13 @@ MaglevParameters MaglevParameters::nominal() {
 
 std::map<std::string, double> MaglevParameters::to_map() const {
   std::map<std::string, double> out;
-  for (const auto& f : kFields) out[f.name] = this->*f.member;
+  for (const auto& f : kMaglevFields) out[f.name] = this->*f.member;
   return out;
 }
 
 MaglevParameters MaglevParameters::from_map(const std::map<std::string, double>& values) {
   MaglevParameters p;
-  for (const auto& f : kFields) {
+  for (const auto& f : kMaglevFields) {
     const auto it = values.find(f.name);
     if (it == values.end()) throw Error(std::string("maglev1coil_voltage parameter '") + f.name + "' is missing");
     p.*f.member = it->second;
@@ -61,16 +61,16 @@ MaglevParameters MaglevParameters::from_map(const std::map<std::string, double>&
 }
 
 void MaglevParameters::set(const std::string& name, double value) {
-  for (const auto& f : kFields)
+  for (const auto& f : kMaglevFields)
     if (name == f.name) {
       this->*f.member = value;
       return;
     }
-  throw Error("unknown maglev1coil_voltage parameter '" + name + "'; valid names: " + valid_names());
+  throw Error("unknown maglev1coil_voltage parameter '" + name + "'; valid names: " + valid_maglev_names());
 }
 
 void MaglevParameters::validate() const {
-  for (const auto& f : kFields) {
+  for (const auto& f : kMaglevFields) {
     const double v = this->*f.member;
     if (!std::isfinite(v) || !(v > 0.0)) {
       std::ostringstream msg;
@@ -89,7 +89,7 @@ void MaglevParameters::validate() const {
 const std::vector<std::string>& MaglevParameters::names() {
   static const std::vector<std::string> out = [] {
     std::vector<std::string> n;
-    for (const auto& f : kFields) n.emplace_back(f.name);
+    for (const auto& f : kMaglevFields) n.emplace_back(f.name);
     return n;
   }();
   return out;

@@ -8,11 +8,11 @@
 namespace ambid::sim {
 namespace {
 
-struct Field {
+struct RigField {
   const char* name;
   double MaglevRig::*member;
 };
-constexpr Field kFields[] = {
+constexpr RigField kRigFields[] = {
     {"Kp", &MaglevRig::Kp},
     {"Ti", &MaglevRig::Ti},
     {"Td", &MaglevRig::Td},
@@ -33,7 +33,7 @@ constexpr Field kFields[] = {
     {"log_i", &MaglevRig::log_i},
 };
 
-[[noreturn]] void fail(const std::string& what, double value) {
+[[noreturn]] void fail_rig(const std::string& what, double value) {
   std::ostringstream msg;
   msg << "maglev rig: " << what << ", got " << value;
   throw Error(msg.str());
@@ -43,46 +43,46 @@ constexpr Field kFields[] = {
 
 std::map<std::string, double> MaglevRig::to_map() const {
   std::map<std::string, double> out;
-  for (const auto& f : kFields) out[f.name] = this->*f.member;
+  for (const auto& f : kRigFields) out[f.name] = this->*f.member;
   return out;
 }
 
 void MaglevRig::set(const std::string& name, double value) {
-  for (const auto& f : kFields)
+  for (const auto& f : kRigFields)
     if (name == f.name) {
       this->*f.member = value;
       return;
     }
   std::string valid;
-  for (const auto& f : kFields) valid += (valid.empty() ? "" : ", ") + std::string(f.name);
+  for (const auto& f : kRigFields) valid += (valid.empty() ? "" : ", ") + std::string(f.name);
   throw Error("maglev rig: unknown setting '" + name + "'; valid names: " + valid);
 }
 
 void MaglevRig::validate() const {
-  for (const auto& f : kFields) {
+  for (const auto& f : kRigFields) {
     const double v = this->*f.member;
-    if (!std::isfinite(v)) fail(std::string(f.name) + " must be finite", v);
+    if (!std::isfinite(v)) fail_rig(std::string(f.name) + " must be finite", v);
   }
-  if (!(Kp > 0.0)) fail("Kp must be positive", Kp);
-  if (!(Ti > 0.0)) fail("Ti must be positive", Ti);
-  if (!(Td >= 0.0)) fail("Td must be >= 0", Td);
-  if (!(integral_min <= integral_max)) fail("integral_min must not exceed integral_max", integral_min);
-  if (!(pid_min <= pid_max)) fail("pid_min must not exceed pid_max", pid_min);
-  if (!(v_ref > 0.0)) fail("v_ref must be positive", v_ref);
-  if (!(dac_step >= 0.0)) fail("dac_step must be >= 0", dac_step);
-  if (!(sensor_gain > 0.0)) fail("sensor_gain must be positive", sensor_gain);
-  if (!(sensor_exponent > 0.0)) fail("sensor_exponent must be positive", sensor_exponent);
-  if (!(sensor_reference > 0.0)) fail("sensor_reference must be positive", sensor_reference);
+  if (!(Kp > 0.0)) fail_rig("Kp must be positive", Kp);
+  if (!(Ti > 0.0)) fail_rig("Ti must be positive", Ti);
+  if (!(Td >= 0.0)) fail_rig("Td must be >= 0", Td);
+  if (!(integral_min <= integral_max)) fail_rig("integral_min must not exceed integral_max", integral_min);
+  if (!(pid_min <= pid_max)) fail_rig("pid_min must not exceed pid_max", pid_min);
+  if (!(v_ref > 0.0)) fail_rig("v_ref must be positive", v_ref);
+  if (!(dac_step >= 0.0)) fail_rig("dac_step must be >= 0", dac_step);
+  if (!(sensor_gain > 0.0)) fail_rig("sensor_gain must be positive", sensor_gain);
+  if (!(sensor_exponent > 0.0)) fail_rig("sensor_exponent must be positive", sensor_exponent);
+  if (!(sensor_reference > 0.0)) fail_rig("sensor_reference must be positive", sensor_reference);
   if (!(sensor_delay >= 0.0) || sensor_delay != std::floor(sensor_delay))
-    fail("sensor_delay must be a whole number of samples >= 0", sensor_delay);
+    fail_rig("sensor_delay must be a whole number of samples >= 0", sensor_delay);
   for (const double r : {log_x, log_u, log_i})
-    if (!(r >= 0.0)) fail("log resolutions must be >= 0", r);
+    if (!(r >= 0.0)) fail_rig("log resolutions must be >= 0", r);
 }
 
 const std::vector<std::string>& MaglevRig::names() {
   static const std::vector<std::string> out = [] {
     std::vector<std::string> n;
-    for (const auto& f : kFields) n.emplace_back(f.name);
+    for (const auto& f : kRigFields) n.emplace_back(f.name);
     return n;
   }();
   return out;

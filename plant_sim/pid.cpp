@@ -18,23 +18,23 @@ struct LoopSystem {
   Eigen::MatrixXd A, B, C, D;  // B is states x 1, C is 1 x states, D is 1 x 1
 };
 
-Eigen::Index index_of(const Names& names, const std::string& name) {
+Eigen::Index index_in(const Names& names, const std::string& name) {
   const auto it = std::find(names.begin(), names.end(), name);
   return it == names.end() ? -1 : static_cast<Eigen::Index>(it - names.begin());
 }
 
-[[noreturn]] void fail(const std::string& where, const std::string& what, double value) {
+[[noreturn]] void fail_pid(const std::string& where, const std::string& what, double value) {
   std::ostringstream msg;
   msg << where << ": " << what << ", got " << value;
   throw Error(msg.str());
 }
 
 void require_sample_time(double T, const char* where) {
-  if (!(T > 0.0) || !std::isfinite(T)) fail(where, "sample time must be positive and finite", T);
+  if (!(T > 0.0) || !std::isfinite(T)) fail_pid(where, "sample time must be positive and finite", T);
 }
 
 void require_finite(double v, const std::string& where, const char* name) {
-  if (!std::isfinite(v)) fail(where, std::string(name) + " must be finite", v);
+  if (!std::isfinite(v)) fail_pid(where, std::string(name) + " must be finite", v);
 }
 
 LoopSystem pid_loop(const PidLoop& loop, double T, const std::string& where) {
@@ -43,7 +43,7 @@ LoopSystem pid_loop(const PidLoop& loop, double T, const std::string& where) {
   require_finite(loop.kd, where, "kd");
   const bool integral = loop.ki != 0.0, derivative = loop.kd != 0.0;
   if (derivative && !(loop.derivative_time_constant > 0.0 && std::isfinite(loop.derivative_time_constant)))
-    fail(where, "derivative_time_constant must be positive when kd != 0", loop.derivative_time_constant);
+    fail_pid(where, "derivative_time_constant must be positive when kd != 0", loop.derivative_time_constant);
   const Eigen::Index n = (integral ? 1 : 0) + (derivative ? 1 : 0);
   LoopSystem s{Eigen::MatrixXd::Zero(n, n), Eigen::MatrixXd::Zero(n, 1), Eigen::MatrixXd::Zero(1, n),
                Eigen::MatrixXd::Constant(1, 1, loop.kp)};
@@ -73,9 +73,9 @@ LoopSystem lead_lag_loop(const LeadLagLoop& loop, double T, const std::string& w
   Eigen::MatrixXd A(0, 0), B(0, 1), C(1, 0), D = Eigen::MatrixXd::Constant(1, 1, loop.gain);
   for (const LeadLagSection& sec : loop.sections) {
     if (!(sec.lag_time_constant > 0.0 && std::isfinite(sec.lag_time_constant)))
-      fail(where, "lag_time_constant must be positive", sec.lag_time_constant);
+      fail_pid(where, "lag_time_constant must be positive", sec.lag_time_constant);
     if (!(sec.lead_time_constant >= 0.0 && std::isfinite(sec.lead_time_constant)))
-      fail(where, "lead_time_constant must be non-negative", sec.lead_time_constant);
+      fail_pid(where, "lead_time_constant must be non-negative", sec.lead_time_constant);
     const double a = -1.0 / sec.lag_time_constant, b = 1.0 / sec.lag_time_constant;
     const double c = 1.0 - sec.lead_time_constant / sec.lag_time_constant;
     const double d = sec.lead_time_constant / sec.lag_time_constant;
@@ -125,14 +125,14 @@ StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Na
   for (std::size_t i = 0; i < loops.size(); ++i) {
     const std::string where = std::string(kind) + " loop " + std::to_string(i) + " ('" + loops[i].measured + "')";
     if (loops[i].measured.empty()) throw Error(where + ": measured signal name is empty");
-    if (index_of(plant_inputs, loops[i].measured) >= 0) throw Error(where + ": measured signal is a plant input");
+    if (index_in(plant_inputs, loops[i].measured) >= 0) throw Error(where + ": measured signal is a plant input");
     if (loops[i].drives.empty()) throw Error(where + ": drives no plant input");
     for (const LoopDrive& drive : loops[i].drives) {
-      if (index_of(plant_inputs, drive.input) < 0)
+      if (index_in(plant_inputs, drive.input) < 0)
         throw Error(where + ": drives '" + drive.input + "', which is not a plant input");
       require_finite(drive.gain, where, "drive gain");
     }
-    if (index_of(c.inputs, loops[i].measured) < 0) c.inputs.push_back(loops[i].measured);
+    if (index_in(c.inputs, loops[i].measured) < 0) c.inputs.push_back(loops[i].measured);
     systems.push_back(discretise(loops[i], T, where));
     states += systems.back().A.rows();
   }
@@ -145,11 +145,11 @@ StateSpaceController assemble(const std::vector<Loop>& loops, double T, const Na
   Eigen::Index offset = 0;
   for (std::size_t i = 0; i < loops.size(); ++i) {
     const LoopSystem& s = systems[i];
-    const Eigen::Index n = s.A.rows(), col = index_of(c.inputs, loops[i].measured);
+    const Eigen::Index n = s.A.rows(), col = index_in(c.inputs, loops[i].measured);
     c.A.block(offset, offset, n, n) = s.A;
     c.B.block(offset, col, n, 1) = -s.B;  // e = -y
     for (const LoopDrive& drive : loops[i].drives) {
-      const Eigen::Index row = index_of(plant_inputs, drive.input);
+      const Eigen::Index row = index_in(plant_inputs, drive.input);
       c.C.block(row, offset, 1, n) += drive.gain * s.C;
       c.D(row, col) -= drive.gain * s.D(0, 0);
     }

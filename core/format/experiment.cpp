@@ -15,7 +15,9 @@
 namespace ambid {
 namespace {
 
-std::string dims(Eigen::Index rows, Eigen::Index cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
+std::string size_text(Eigen::Index rows, Eigen::Index cols) {
+  return std::to_string(rows) + "x" + std::to_string(cols);
+}
 
 std::string join(const std::vector<std::string>& names) {
   std::string out;
@@ -35,7 +37,7 @@ void require_positive_finite(double value, const std::string& key) {
 void require_shape(const Eigen::MatrixXd& m, Eigen::Index rows, Eigen::Index cols, const std::string& key,
                    const std::string& meaning) {
   if (m.rows() != rows || m.cols() != cols)
-    throw Error(key + " must be " + dims(rows, cols) + " (" + meaning + "), got " + dims(m.rows(), m.cols()));
+    throw Error(key + " must be " + size_text(rows, cols) + " (" + meaning + "), got " + dims(m));
 }
 
 void require_finite(const Eigen::MatrixXd& m, const std::string& key) {

@@ -17,7 +17,7 @@ namespace {
 
 constexpr Eigen::Index kMinWindows = 16;
 
-double normal_upper_tail(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
+double upper_tail_probability(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
 
 // The z of a scaled chi-square g chi2(nu) with mean `mean` and variance `variance` at t
 // (Wilson-Hilferty).
@@ -121,7 +121,7 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
     if (mean > 0.0) {
       c.coherence_mean[j] = sum / double(used.size());
       c.coherence_z[j] = scaled_chi_square_z(sum, mean, variance);
-      c.coherence_p[j] = normal_upper_tail(c.coherence_z[j]);
+      c.coherence_p[j] = upper_tail_probability(c.coherence_z[j]);
     }
   }
   c.p_value = std::min(1.0, c.coherence_p.minCoeff() * double(q));

@@ -25,7 +25,7 @@ using Index = Eigen::Index;
 using pem::Gain;
 using pem::Parameters;
 using pem::Vector9;
-const std::string kWho = "prediction-error identification";
+const std::string kPemWho = "prediction-error identification";
 constexpr double kWeightingTolerance = 1.0;  // standard errors: close enough to set the weights
 constexpr double kNearDamping = 1e-10;
 
@@ -112,7 +112,7 @@ class Problem {
     if (!squares) return false;
     for (Index j = 0; j < 3; ++j) {
       const double rms = std::sqrt((*squares)(j) / double(predictor_.samples()));
-      if (!(rms > 0.0)) throw InsufficientData(kWho + ": output " + std::to_string(j + 1) + " is predicted exactly");
+      if (!(rms > 0.0)) throw InsufficientData(kPemWho + ": output " + std::to_string(j + 1) + " is predicted exactly");
       weight_(j) = 1.0 / rms;
     }
     return true;
@@ -155,33 +155,34 @@ Eigen::Vector3d checked_spread(const Eigen::MatrixXd& y, const Eigen::MatrixXd& 
                                double sample_time, const Amb1dofPredictionErrorOptions& options) {
   const Index N = y.rows();
   if (y.cols() != 3 || u.cols() != 2 || r.cols() != 2 || u.rows() != N || r.rows() != N)
-    throw Error(kWho + ": needs y = [x, i1, i2], u and r at [u1, u2] with equal samples, got y " + std::to_string(N) +
-                " x " + std::to_string(y.cols()) + ", u " + std::to_string(u.rows()) + " x " +
+    throw Error(kPemWho + ": needs y = [x, i1, i2], u and r at [u1, u2] with equal samples, got y " +
+                std::to_string(N) + " x " + std::to_string(y.cols()) + ", u " + std::to_string(u.rows()) + " x " +
                 std::to_string(u.cols()) + ", r " + std::to_string(r.rows()) + " x " + std::to_string(r.cols()));
-  if (!(sample_time > 0.0) || !std::isfinite(sample_time)) throw Error(kWho + ": sample time must be finite and > 0");
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time))
+    throw Error(kPemWho + ": sample time must be finite and > 0");
   if (!y.allFinite() || !u.allFinite() || !r.allFinite())
-    throw Error(kWho + ": y, u and r must be finite (a NaN or infinite sample)");
+    throw Error(kPemWho + ": y, u and r must be finite (a NaN or infinite sample)");
   if (options.score_block < 1 || options.min_blocks < 1)
-    throw Error(kWho + ": score_block and min_blocks must be >= 1");
+    throw Error(kPemWho + ": score_block and min_blocks must be >= 1");
   if (options.max_iterations < 0 || !(options.step_tolerance > 0.0))
-    throw Error(kWho + ": max_iterations must be >= 0 and step_tolerance > 0");
+    throw Error(kPemWho + ": max_iterations must be >= 0 and step_tolerance > 0");
   if (N < options.score_block * options.min_blocks)
-    throw InsufficientData(kWho + ": " + std::to_string(N) + " samples; the uncertainty needs at least " +
+    throw InsufficientData(kPemWho + ": " + std::to_string(N) + " samples; the uncertainty needs at least " +
                            std::to_string(options.min_blocks) + " blocks of " + std::to_string(options.score_block));
   if (!(r.cwiseAbs().maxCoeff() > 0.0))
-    throw InsufficientData(kWho + ": the excitation r is zero: nothing but noise drives the loop");
+    throw InsufficientData(kPemWho + ": the excitation r is zero: nothing but noise drives the loop");
   Eigen::Vector3d spread;
   for (Index j = 0; j < 3; ++j) {
     spread(j) = rms(y.col(j).array() - y.col(j).mean());
     if (!(spread(j) > 0.0))
-      throw InsufficientData(kWho + ": output " + std::to_string(j + 1) + " of [x, i1, i2] does not vary");
+      throw InsufficientData(kPemWho + ": output " + std::to_string(j + 1) + " of [x, i1, i2] does not vary");
   }
   return spread;
 }
 
 void check_start(const Vector9& v) {
   if (!v.allFinite() || (v.array() == 0.0).any())
-    throw Error(kWho + ": a starting v1..v9 is not finite or has a zero entry");
+    throw Error(kPemWho + ": a starting v1..v9 is not finite or has a zero entry");
 }
 
 // Refines the ranked starts (the next one when the solver cannot evaluate a start) and fills
@@ -221,7 +222,7 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
         start_cost = pass.initial_cost;
         p = pass.p;
       } else if (!problem.reweight(p)) {
-        throw InsufficientData(kWho + ": the predictor of the start diverges");
+        throw InsufficientData(kPemWho + ": the predictor of the start diverges");
       }
       solution = levenberg_marquardt(problem.least_squares(), p, second);
       if (!weighting_pass) start_cost = solution->initial_cost;
@@ -257,11 +258,11 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
     for (Index i = 0; i < 9; ++i) {
       const double relative = std::sqrt(fit.covariance(i, i)) / std::abs(fit.v(i));
       if (!(relative <= kMaxRelativeSigma))
-        throw InsufficientData(kWho + ": the data do not determine v" + std::to_string(i + 1) + " (one sigma " +
+        throw InsufficientData(kPemWho + ": the data do not determine v" + std::to_string(i + 1) + " (one sigma " +
                                std::to_string(100.0 * relative) + " % of its value)");
     }
     const std::optional<Eigen::Vector3d> squares = predictor.squares(theta);
-    if (!squares) throw InsufficientData(kWho + ": the predictor diverges at the solution");
+    if (!squares) throw InsufficientData(kPemWho + ": the predictor diverges at the solution");
     fit.residual_rms = (*squares / double(predictor.samples())).cwiseSqrt();
 
     Eigen::Matrix4d A;
@@ -282,7 +283,7 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
 PemWarmStart amb1dof_cold_start(const Vector9& v, const Eigen::Vector3d& spread, double sample_time) {
   check_start(v);
   if (!spread.allFinite() || !(spread.minCoeff() > 0.0))
-    throw Error(kWho + ": the spread of every output must be finite and > 0");
+    throw Error(kPemWho + ": the spread of every output must be finite and > 0");
   const Parameters theta = cold_start(v, Eigen::MatrixXd::Zero(1, 3), sample_time, spread);
   PemWarmStart start;
   start.v = v;
@@ -295,7 +296,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
                                                        const std::vector<Vector9>& v_starts,
                                                        const Amb1dofPredictionErrorOptions& options) {
   const Eigen::Vector3d spread = checked_spread(y, u, r, sample_time, options);
-  if (v_starts.empty()) throw Error(kWho + ": needs at least one starting v1..v9");
+  if (v_starts.empty()) throw Error(kPemWho + ": needs at least one starting v1..v9");
   for (const Vector9& v : v_starts) check_start(v);
   const pem::Amb1dofPredictor predictor(y, u, sample_time);
 
@@ -308,7 +309,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
     const double cost = squares ? squares->dot(spread.cwiseAbs2().cwiseInverse()) : 0.0;
     if (squares && std::isfinite(cost)) ranked.emplace_back(cost, starts.size() - 1);
   }
-  if (ranked.empty()) throw InsufficientData(kWho + ": the predictor of every starting model diverges");
+  if (ranked.empty()) throw InsufficientData(kPemWho + ": the predictor of every starting model diverges");
   std::sort(ranked.begin(), ranked.end());
   std::vector<std::size_t> order;
   for (const auto& entry : ranked) order.push_back(entry.second);
@@ -322,11 +323,11 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixX
   const Eigen::Vector3d spread = checked_spread(y, u, r, sample_time, options);
   check_start(start.v);
   if (!start.offset.allFinite() || !start.predictor_gain.allFinite())
-    throw Error(kWho + ": the warm start's offset or predictor gain is not finite");
+    throw Error(kPemWho + ": the warm start's offset or predictor gain is not finite");
   const pem::Amb1dofPredictor predictor(y, u, sample_time);
   const Parameters theta = pem::pack(start.v, start.offset, first_state(y), start.predictor_gain);
   if (!predictor.squares(theta))
-    throw InsufficientData(kWho + ": the predictor of the warm start diverges on this record");
+    throw InsufficientData(kPemWho + ": the predictor of the warm start diverges on this record");
   return refine(predictor, {theta}, {0}, false, spread, sample_time, options);
 }
 

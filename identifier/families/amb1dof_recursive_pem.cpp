@@ -10,7 +10,7 @@
 namespace ambid::ident {
 namespace {
 
-const std::string kWho = "recursive prediction-error identification";
+const std::string kRecursivePemWho = "recursive prediction-error identification";
 constexpr int kGain = 12;  // first K column of theta (K(i, j) at kGain + 3 i + j)
 using Parameters = Amb1dofRecursivePem::Parameters;
 
@@ -46,10 +46,10 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
       ud_([&] {
         if (!start.v.allFinite() || (start.v.array() == 0.0).any() || !start.offset.allFinite() ||
             !start.predictor_gain.allFinite())
-          throw Error(kWho + ": the start's v1..v9 must be finite and non-zero, its w and K finite");
+          throw Error(kRecursivePemWho + ": the start's v1..v9 must be finite and non-zero, its w and K finite");
         if (!spread.allFinite() || !(spread.minCoeff() > 0.0))
-          throw Error(kWho + ": the spread of every output must be finite and > 0");
-        if (!(options.prior_relative_sigma > 0.0)) throw Error(kWho + ": prior_relative_sigma must be > 0");
+          throw Error(kRecursivePemWho + ": the spread of every output must be finite and > 0");
+        if (!(options.prior_relative_sigma > 0.0)) throw Error(kRecursivePemWho + ": prior_relative_sigma must be > 0");
         Eigen::VectorXd prior = Eigen::VectorXd::Ones(kParameters);
         prior.head<9>().setConstant(options.prior_relative_sigma * options.prior_relative_sigma);
         return UdCovariance(prior);
@@ -57,13 +57,14 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
       lambda_(spread.cwiseAbs2()),
       s1_(options.prior_weight_samples),
       forgetting_(options.startup_forgetting) {
-  if (!(sample_time > 0.0) || !std::isfinite(sample_time)) throw Error(kWho + ": sample time must be finite and > 0");
+  if (!(sample_time > 0.0) || !std::isfinite(sample_time))
+    throw Error(kRecursivePemWho + ": sample time must be finite and > 0");
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0) ||
       !(options.startup_forgetting > 0.0 && options.startup_forgetting <= 1.0))
-    throw Error(kWho + ": forgetting factors must be in (0, 1]");
-  if (!(options.offset_random_walk >= 0.0)) throw Error(kWho + ": offset_random_walk must be >= 0");
+    throw Error(kRecursivePemWho + ": forgetting factors must be in (0, 1]");
+  if (!(options.offset_random_walk >= 0.0)) throw Error(kRecursivePemWho + ": offset_random_walk must be >= 0");
   if (!(options.startup_samples >= 1.0) || options.relinearise_samples < 1 || !(options.prior_weight_samples >= 1.0))
-    throw Error(kWho + ": startup_samples, relinearise_samples and prior_weight_samples must be >= 1");
+    throw Error(kRecursivePemWho + ": startup_samples, relinearise_samples and prior_weight_samples must be >= 1");
   theta_.head<9>() = start.v;
   theta_.segment<3>(9) = start.offset;
   for (int i = 0; i < 4; ++i)
@@ -71,7 +72,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
   scale_ = parameter_scale(theta_, spread);
   checked_ = theta_;
   relinearise();
-  if (projections_ > 0) throw InsufficientData(kWho + ": the predictor of the start is unstable");
+  if (projections_ > 0) throw InsufficientData(kRecursivePemWho + ": the predictor of the start is unstable");
 }
 
 Eigen::Matrix<double, 4, 3> Amb1dofRecursivePem::predictor_gain() const {

@@ -12,7 +12,7 @@ namespace ambid::ident {
 namespace {
 
 using Index = Eigen::Index;
-const std::string kWho = "maglev grey-box fit";
+const std::string kGreyboxWho = "maglev grey-box fit";
 
 // 4-point Gauss-Legendre on [0, 1].
 constexpr std::array<double, 4> kNode = {0.5 - 0.5 * 0.8611363115940526, 0.5 - 0.5 * 0.3399810435848563,
@@ -22,10 +22,10 @@ constexpr std::array<double, 4> kWeight = {0.5 * 0.3478548451374538, 0.5 * 0.652
 
 double nominal_value(const MaglevGreyBoxInput& in, const char* name) {
   const auto it = in.nominal.find(name);
-  if (it == in.nominal.end()) throw Error(kWho + ": nominal parameter '" + name + "' is missing");
+  if (it == in.nominal.end()) throw Error(kGreyboxWho + ": nominal parameter '" + name + "' is missing");
   if (!(it->second > 0.0) || !std::isfinite(it->second)) {
     std::ostringstream msg;
-    msg << kWho << ": nominal parameter '" << name << "' must be positive, got " << it->second;
+    msg << kGreyboxWho << ": nominal parameter '" << name << "' must be positive, got " << it->second;
     throw Error(msg.str());
   }
   return it->second;
@@ -110,14 +110,14 @@ Coil fit_coil(const MaglevGreyBoxInput& in, const Estimates& e) {
   for (Index k = 0; k < n; ++k) A.row(k) << in.i(k), in.u(k), emf_regressor(in, k, e);
   const Eigen::Vector3d scale = A.colwise().norm().transpose();
   if (!(scale.array() > 0.0).all())
-    throw InsufficientData(kWho + ": the coil regression has a zero column (constant current, command or gap)");
+    throw InsufficientData(kGreyboxWho + ": the coil regression has a zero column (constant current, command or gap)");
   const Eigen::MatrixXd As = A * scale.cwiseInverse().asDiagonal();
   const auto solution = linalg::qr_solve(As, b);
   if (solution.rank < 3)
-    throw InsufficientData(kWho + ": the coil regression is rank deficient (rank " + std::to_string(solution.rank) +
-                           " of 3)");
+    throw InsufficientData(kGreyboxWho + ": the coil regression is rank deficient (rank " +
+                           std::to_string(solution.rank) + " of 3)");
   const Eigen::MatrixXd gram = linalg::qr_inverse_gram(As);
-  if (gram.size() == 0) throw InsufficientData(kWho + ": the coil regression is rank deficient");
+  if (gram.size() == 0) throw InsufficientData(kGreyboxWho + ": the coil regression is rank deficient");
   Coil c;
   const Eigen::Vector3d theta = solution.x.cwiseQuotient(scale);
   c.a = theta(0);
@@ -129,7 +129,7 @@ Coil fit_coil(const MaglevGreyBoxInput& in, const Estimates& e) {
   c.covariance = scale.cwiseInverse().asDiagonal() * gram * scale.cwiseInverse().asDiagonal() * s2;
   if (!(c.a > 0.0 && c.a < 1.0) || !(c.beta > 0.0)) {
     std::ostringstream msg;
-    msg << kWho << ": the coil fit gives a = " << c.a << ", beta = " << c.beta
+    msg << kGreyboxWho << ": the coil fit gives a = " << c.a << ", beta = " << c.beta
         << " (a pole outside (0, 1) or no gain): the record does not support the coil model";
     throw InsufficientData(msg.str());
   }
@@ -159,7 +159,7 @@ Body body_windows(const MaglevGreyBoxInput& in, const Estimates& e) {
   b.g = e.g;
   b.m = std::max<Index>(2, Index(std::llround(in.window / in.sample_time)));
   if (N < 2 * b.m + 4)
-    throw InsufficientData(kWho + ": " + std::to_string(N) + " samples are too few for windows of " +
+    throw InsufficientData(kGreyboxWho + ": " + std::to_string(N) + " samples are too few for windows of " +
                            std::to_string(2 * b.m) + " samples");
   b.li.resize(N - 1, 4);
   b.lx.resize(N - 1, 4);
@@ -218,17 +218,18 @@ void body_residuals(const Body& b, const double* theta, double* r, double* jac) 
 MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   const Index N = in.x.size();
   if (in.i.size() != N || in.u.size() != N)
-    throw Error(kWho + ": x, i and u must have one entry per sample (" + std::to_string(N) + ", " +
+    throw Error(kGreyboxWho + ": x, i and u must have one entry per sample (" + std::to_string(N) + ", " +
                 std::to_string(in.i.size()) + ", " + std::to_string(in.u.size()) + ")");
-  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite()) throw Error(kWho + ": a signal is not finite");
-  if ((in.x.array() <= 0.0).any()) throw Error(kWho + ": the gap x must be positive in every sample");
+  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite())
+    throw Error(kGreyboxWho + ": a signal is not finite");
+  if ((in.x.array() <= 0.0).any()) throw Error(kGreyboxWho + ": the gap x must be positive in every sample");
   if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0)) {
     std::ostringstream msg;
-    msg << kWho << ": sample time, operating gap, operating current and window must be positive, got " << in.sample_time
-        << ", " << in.x0 << ", " << in.i0 << ", " << in.window;
+    msg << kGreyboxWho << ": sample time, operating gap, operating current and window must be positive, got "
+        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window;
     throw Error(msg.str());
   }
-  if (N < 20) throw InsufficientData(kWho + ": " + std::to_string(N) + " samples are too few");
+  if (N < 20) throw InsufficientData(kGreyboxWho + ": " + std::to_string(N) + " samples are too few");
   const double m = nominal_value(in, "m"), g = nominal_value(in, "g"), kw = nominal_value(in, "kw");
   double n_i = nominal_value(in, "n_i"), n_x = nominal_value(in, "n_x");
   const double Ts = in.sample_time;
@@ -247,7 +248,7 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
     est.L = coil_values(1);
     est.Ke = std::max(coil_values(2), 0.0);
     const Body body = body_windows(in, est);
-    if (body.centres.size() < 10) throw InsufficientData(kWho + ": fewer than 10 usable windows for the body");
+    if (body.centres.size() < 10) throw InsufficientData(kGreyboxWho + ": fewer than 10 usable windows for the body");
     NonlinearLeastSquares problem;
     problem.residual_count = int(body.centres.size());
     problem.residuals = [&body](const double* theta, double* r, double* jac) {
@@ -261,7 +262,7 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
     options.jacobian = true;
     solution = solve_nonlinear_least_squares(problem, Eigen::Vector3d(est.rho, est.n_i, est.n_x), options);
     if (!solution.usable() || !solution.evaluated)
-      throw InsufficientData(kWho + ": the body fit failed: " + solution.message);
+      throw InsufficientData(kGreyboxWho + ": the body fit failed: " + solution.message);
     est.rho = solution.x(0);
     est.n_i = n_i = solution.x(1);
     est.n_x = n_x = solution.x(2);
@@ -274,7 +275,8 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   const Eigen::VectorXd& r = solution.residuals;
   const Eigen::MatrixXd H_inv = linalg::qr_inverse_gram(J);
   if (H_inv.size() == 0)
-    throw InsufficientData(kWho + ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
+    throw InsufficientData(kGreyboxWho +
+                           ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
   const Index lags = 2 * out.window_samples;
   Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
   for (Index l = -lags; l <= lags; ++l) {

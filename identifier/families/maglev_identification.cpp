@@ -10,11 +10,11 @@
 namespace ambid::ident {
 namespace {
 
-const std::string kWho = "identify (maglev1coil_voltage)";
+const std::string kMaglevWho = "identify (maglev1coil_voltage)";
 
 double operating(const Experiment& e, const char* name) {
   const auto it = e.operating_point.find(name);
-  if (it == e.operating_point.end()) throw Error(kWho + ": operating_point." + name + " is missing");
+  if (it == e.operating_point.end()) throw Error(kMaglevWho + ": operating_point." + name + " is missing");
   return it->second;
 }
 
@@ -22,7 +22,7 @@ double operating(const Experiment& e, const char* name) {
 
 void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model& model) {
   if (e.y_names != std::vector<std::string>{"x", "i"} || e.u_names != std::vector<std::string>{"u"})
-    throw Error(kWho + ": the grey-box fit needs signals y = [x, i] and u = [u]");
+    throw Error(kMaglevWho + ": the grey-box fit needs signals y = [x, i] and u = [u]");
   MaglevGreyBoxInput in;
   in.sample_time = e.sample_time;
   in.x = e.y.col(0);

@@ -12,8 +12,6 @@
 namespace ambid::ident {
 namespace {
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
 // Inverse of a square matrix with a rank check; `what` names it in the error.
 Eigen::MatrixXd checked_inverse(const Eigen::MatrixXd& m, const std::string& what, double* condition = nullptr) {
   const std::optional<Eigen::MatrixXd> regular = linalg::regular_inverse(m);

@@ -9,8 +9,6 @@
 namespace ambid::ident {
 namespace {
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
 Eigen::Index regressor_count(Eigen::Index p, Eigen::Index m, Eigen::Index q, bool direct) {
   return (direct ? m : 0) + (p + m) * q;
 }

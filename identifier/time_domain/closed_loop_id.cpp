@@ -12,8 +12,6 @@ namespace {
 
 using Index = Eigen::Index;
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
 Index find(const std::vector<std::string>& names, const std::string& name) {
   const auto it = std::find(names.begin(), names.end(), name);
   return it == names.end() ? -1 : static_cast<Index>(it - names.begin());

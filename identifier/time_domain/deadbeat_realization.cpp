@@ -8,11 +8,7 @@
 #include "identifier/time_domain/instrumental_variables.hpp"
 
 namespace ambid::ident {
-namespace {
-
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
-}  // namespace
+namespace {}  // namespace
 
 Eigen::MatrixXd integrator_states(const Eigen::MatrixXd& y, const Eigen::MatrixXd& E, const Eigen::VectorXd& initial) {
   const Eigen::Index ni = E.rows();

@@ -13,7 +13,7 @@
 namespace ambid::ident {
 namespace {
 
-std::string num(double v) {
+std::string three_digits(double v) {
   std::ostringstream s;
   s.precision(3);
   s << v;
@@ -45,7 +45,7 @@ std::string involved_regressors(const Eigen::MatrixXd& V, Eigen::Index first, Ei
   for (const Eigen::Index j : order) {
     if (weight(j) < cut || listed == 8) break;
     if (listed++) s << ", ";
-    s << names[static_cast<std::size_t>(j)] << " (" << num(weight(j)) << ")";
+    s << names[static_cast<std::size_t>(j)] << " (" << three_digits(weight(j)) << ")";
   }
   return s.str();
 }
@@ -133,11 +133,11 @@ Eigen::MatrixXd LeastSquaresAccumulator::factor() const {
 LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& options) const {
   const Eigen::Index p = regressors_, t = targets_;
   if (!(options.regularization >= 0.0) || !std::isfinite(options.regularization))
-    throw Error("least squares: regularization must be >= 0 and finite, got " + num(options.regularization));
+    throw Error("least squares: regularization must be >= 0 and finite, got " + three_digits(options.regularization));
   if (!(options.max_condition > 1.0))
-    throw Error("least squares: max_condition must be > 1, got " + num(options.max_condition));
+    throw Error("least squares: max_condition must be > 1, got " + three_digits(options.max_condition));
   if (!(options.rank_tolerance < 1.0) || std::isnan(options.rank_tolerance))
-    throw Error("least squares: rank_tolerance must be < 1, got " + num(options.rank_tolerance));
+    throw Error("least squares: rank_tolerance must be < 1, got " + three_digits(options.rank_tolerance));
   if (rows_ <= p)
     throw InsufficientData("least squares: " + std::to_string(rows_) + " data rows for " + std::to_string(p) +
                            " regressors; at least " + std::to_string(p + 1) +
@@ -191,16 +191,17 @@ LeastSquaresSolution LeastSquaresAccumulator::solve(const LeastSquaresOptions& o
     throw InsufficientData("least squares: the regressors are rank deficient: numerical rank " +
                            std::to_string(out.rank) + " of " + std::to_string(p) + " (" + std::to_string(missing) +
                            (missing == 1 ? " direction" : " directions") + " without excitation, relative tolerance " +
-                           num(tol) + "); the missing directions involve " +
+                           three_digits(tol) + "); the missing directions involve " +
                            involved_regressors(svd.V, out.rank, p, names_) +
                            " (more exciting data, a lower model order, or regularization)");
   }
   out.condition_number = smax / out.singular_values(p - 1);
   if (!(out.condition_number <= options.max_condition))
-    throw InsufficientData(
-        "least squares: the regressors are ill-conditioned: condition number " + num(out.condition_number) +
-        " (column-equilibrated) exceeds the limit " + num(options.max_condition) + "; the weakest direction involves " +
-        involved_regressors(svd.V, p - 1, p, names_) + " (more exciting data, a lower model order, or regularization)");
+    throw InsufficientData("least squares: the regressors are ill-conditioned: condition number " +
+                           three_digits(out.condition_number) + " (column-equilibrated) exceeds the limit " +
+                           three_digits(options.max_condition) + "; the weakest direction involves " +
+                           involved_regressors(svd.V, p - 1, p, names_) +
+                           " (more exciting data, a lower model order, or regularization)");
   out.raw_condition_number = linalg::condition_number(S11);
 
   const auto S11u = S11.triangularView<Eigen::Upper>();

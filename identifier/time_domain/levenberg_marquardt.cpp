@@ -11,7 +11,7 @@ namespace ambid::ident {
 namespace {
 
 using Index = Eigen::Index;
-const std::string kWho = "levenberg-marquardt";
+const std::string kLmWho = "levenberg-marquardt";
 constexpr double kMinDamping = 1e-15, kMaxDamping = 1e15;
 
 // argmin ||R delta - z||^2 + lambda ||D delta||^2 by a QR of [R z; sqrt(lambda) D 0].
@@ -32,14 +32,14 @@ LevenbergMarquardtResult levenberg_marquardt(const BlockLeastSquares& problem, c
                                              const LevenbergMarquardtOptions& options) {
   const Index n = problem.parameters;
   if (n < 1 || !problem.linearise || !problem.cost || start.size() != n)
-    throw Error(kWho + ": needs parameters, a linearisation and a cost, and a start of " + std::to_string(n) +
+    throw Error(kLmWho + ": needs parameters, a linearisation and a cost, and a start of " + std::to_string(n) +
                 " values (got " + std::to_string(start.size()) + ")");
   if (options.max_iterations < 0 || !(options.step_tolerance > 0.0) || !(options.initial_damping > 0.0) ||
       options.max_trials < 1)
-    throw Error(kWho + ": max_iterations >= 0, step_tolerance > 0, initial_damping > 0 and max_trials >= 1 needed");
+    throw Error(kLmWho + ": max_iterations >= 0, step_tolerance > 0, initial_damping > 0 and max_trials >= 1 needed");
   auto linearise = [&](const Eigen::VectorXd& p, const std::string& where) {
     LeastSquaresAccumulator rows(n, 1, problem.names);
-    if (!problem.linearise(p, rows)) throw InsufficientData(kWho + ": the residuals cannot be evaluated " + where);
+    if (!problem.linearise(p, rows)) throw InsufficientData(kLmWho + ": the residuals cannot be evaluated " + where);
     return rows;
   };
   LevenbergMarquardtResult out{start, linearise(start, "at the start"), 0, false, "", 0.0, 0.0};

@@ -12,8 +12,6 @@ namespace {
 
 using Index = Eigen::Index;
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
 // Coefficient i of a list (zero matrix beyond its end).
 const Eigen::MatrixXd* at(const std::vector<Eigen::MatrixXd>& v, Index i) {
   return i >= 0 && i < static_cast<Index>(v.size()) ? &v[static_cast<std::size_t>(i)] : nullptr;

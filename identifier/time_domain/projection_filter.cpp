@@ -12,8 +12,6 @@ namespace {
 
 using Index = Eigen::Index;
 
-std::string dims(const Eigen::MatrixXd& m) { return std::to_string(m.rows()) + "x" + std::to_string(m.cols()); }
-
 // F from -F [B, AB, ..., A^(k-1) B] = [Z_1, ..., Z_k] by QR least squares.
 Eigen::MatrixXd feedback_gain(const DiscreteSystem& sys, const MarkovSequence& z, Index count,
                               const LeastSquaresOptions& options) {
