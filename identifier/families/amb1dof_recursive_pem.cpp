@@ -11,11 +11,11 @@ namespace ambid::ident {
 namespace {
 
 const std::string kRecursivePemWho = "recursive prediction-error identification";
-constexpr int kGain = 12;  // first K column of theta (K(i, j) at kGain + 3 i + j)
-using Parameters = Amb1dofRecursivePem::Parameters;
+constexpr int kThetaGain = 12;  // first K column of theta (K(i, j) at kThetaGain + 3 i + j)
+using Theta = Amb1dofRecursivePem::Parameters;
 
 // theta = [v, w, K] -> the batch predictor's 28 parameters (x0 = 0: the hold does not use it).
-pem::Parameters batch_parameters(const Parameters& theta) {
+pem::Parameters batch_parameters(const Theta& theta) {
   pem::Parameters out = pem::Parameters::Zero();
   out.head<pem::kModel>() = theta.head<pem::kModel>();
   out.tail<12>() = theta.tail<12>();
@@ -24,14 +24,14 @@ pem::Parameters batch_parameters(const Parameters& theta) {
 
 // The batch method's scales (amb1dof_prediction_error.cpp): v by |v|, w by the size of the
 // rows' terms, K by |K| or a thousandth of the state-to-output ratio.
-Parameters parameter_scale(const Parameters& theta, const Eigen::Vector3d& spread) {
+Theta parameter_scale(const Theta& theta, const Eigen::Vector3d& spread) {
   const Eigen::Vector4d xs(spread(0), spread(0) * std::sqrt(std::abs(theta(0))), spread(1), spread(2));
-  Parameters s;
+  Theta s;
   s.head<9>() = theta.head<9>().cwiseAbs();
   s.segment<3>(9) << std::abs(theta(0)) * spread(0), std::abs(theta(4)) * spread(1), std::abs(theta(6)) * spread(2);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j)
-      s(kGain + 3 * i + j) = std::max(std::abs(theta(kGain + 3 * i + j)), 1e-3 * xs(i) / spread(j));
+      s(kThetaGain + 3 * i + j) = std::max(std::abs(theta(kThetaGain + 3 * i + j)), 1e-3 * xs(i) / spread(j));
   return s;
 }
 
@@ -68,7 +68,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
   theta_.head<9>() = start.v;
   theta_.segment<3>(9) = start.offset;
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 3; ++j) theta_(kGain + 3 * i + j) = start.predictor_gain(i, j);
+    for (int j = 0; j < 3; ++j) theta_(kThetaGain + 3 * i + j) = start.predictor_gain(i, j);
   scale_ = parameter_scale(theta_, spread);
   checked_ = theta_;
   relinearise();
@@ -116,7 +116,7 @@ void Amb1dofRecursivePem::set_model() {
   for (int k = 0; k < pem::kModel; ++k)
     hold_ += (theta_(k) - reference_model_(k)) * reference_.derivative.block<4, 7>(4 * k, 0);
   for (int i = 0; i < 4; ++i)
-    for (int j = 0; j < 3; ++j) gain_(i, j) = theta_(kGain + 3 * i + j);
+    for (int j = 0; j < 3; ++j) gain_(i, j) = theta_(kThetaGain + 3 * i + j);
 }
 
 void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d& u) {
@@ -132,10 +132,10 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   // The 3 outputs as scalar measurements of the linearised error e_j(theta) ~ e_j - psi_j' dtheta.
   ud_.forget(lambda);
   for (int k = 9; k < 12; ++k) {
-    Parameters along = Parameters::Unit(k);
+    Theta along = Theta::Unit(k);
     ud_.add(options_.offset_random_walk, along);
   }
-  Parameters step = Parameters::Zero(), h, gain;
+  Theta step = Theta::Zero(), h, gain;
   for (int j = 0; j < 3; ++j) {
     h = w_.row(pem::kMeasured[std::size_t(j)]).transpose().cwiseProduct(scale_);
     const double innovation = e(j) - h.dot(step);
@@ -155,7 +155,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   Eigen::Matrix<double, 4 * pem::kModel, 1> model_terms;
   model_terms.noalias() = reference_.derivative * z;
   next.leftCols<pem::kModel>() += Eigen::Map<const Eigen::Matrix<double, 4, pem::kModel>>(model_terms.data());
-  for (int i = 0; i < 4; ++i) next.block<1, 3>(i, kGain + 3 * i) += e.transpose();
+  for (int i = 0; i < 4; ++i) next.block<1, 3>(i, kThetaGain + 3 * i) += e.transpose();
   w_ = next;
   x_ = hold_ * z + gain_ * e;
   ++samples_;
