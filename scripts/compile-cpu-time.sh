@@ -25,7 +25,7 @@ summary() {
     sort -rn | head -25
   awk '$1 ~ /^[0-9.]+$/ { cpu[$4] = $1 + $2 }
     END {
-      for (o in cpu) { total += cpu[o]; n++; if (o ~ /\.o$/) compile += cpu[o] }
+      for (o in cpu) { total += cpu[o]; n++; if (o ~ /\.(o|gch)$/) compile += cpu[o] }
       printf "steps: %d; CPU (user + system): %.0f s = %.1f min (compiling %.0f s, linking %.0f s)\n",
         n, total, total / 60, compile, total - compile
       printf "idle estimate: %.1f min on 2 cores (CPU / 2)\n", total / 120
