@@ -1,8 +1,9 @@
 // Bearings one core serves at real time (issue 14: target >= 10 per core), with the identifier
-// daemon's default estimator (pem) on 0.5 s windows (deploy/config/identifier.json) of the
-// stack's bearing with realistic noise (deploy/config/nominal-bearing.json: 0.1 um, 1 mA; one
-// seed per bearing, 5 s records), each bearing its own windows (DescribedWindows, as the
-// daemon keeps per plant). One iteration is 0.5 s of plant time (10 kHz) of every bearing.
+// daemon's default estimator (rpem, continuous: daemons::ContinuousEstimator with its default
+// settings) published every 0.5 s (deploy/config/identifier.json) on the stack's bearing with
+// realistic noise (deploy/config/nominal-bearing.json: 0.1 um, 1 mA; one seed per bearing, 5 s
+// records), each bearing its own windows (DescribedWindows) and estimator, as the daemon keeps
+// per plant. One iteration is 0.5 s of plant time (10 kHz) of every bearing.
 //   BM_FleetWindows/N: N bearings' batches straight into their windows, every window
 //     identified; no bus.
 //   BM_FleetOverBus/<vendor>/N: the same batches written by one participant (the plant side)
@@ -13,7 +14,8 @@
 //     (bus_throughput_bench) for the raw vendor rate of the same payload.
 // Counters: bearings_per_core = plant seconds handled per second of the PROCESS's CPU time
 // (both sides of the bus included), i.e. bearings one core keeps at real time;
-// unidentified = windows pem refused (reported, not hidden).
+// unidentified = windows the estimator refused (reported, not hidden); items_per_second =
+// samples per second of process CPU time, to compare with BM_BusSamples' raw vendor rate.
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -27,8 +29,8 @@
 #include "services/bus/make_bus.hpp"
 #include "services/convert/plant_description.hpp"
 #include "services/convert/plant_samples.hpp"
+#include "services/daemons/continuous_estimator.hpp"
 #include "services/daemons/described_windows.hpp"
-#include "services/daemons/identify_window.hpp"
 #include "services/daemons/scenario_json.hpp"
 
 namespace {
@@ -78,30 +80,34 @@ struct Source {
   }
 };
 
-// The identifier side: one DescribedWindows per bearing, as the daemon keeps them.
+// The identifier side: one DescribedWindows and one estimator per bearing, as the daemon keeps them.
 struct Fleet {
   std::vector<Source> sources;
   std::vector<DescribedWindows> windows;
+  std::vector<ambid::daemons::ContinuousEstimator> estimators;
   std::int64_t unidentified = 0;
+  std::uint64_t seq = 0;
 
   explicit Fleet(int n) {
     for (int k = 0; k < n; ++k) {
       sources.push_back({ambid::convert::describe(records()[std::size_t(k)], plant(k))});
       windows.emplace_back(ambid::daemons::WindowSettings{.window = kWindow, .settle = 0.0});
       windows.back().describe(sources.back().description);
+      estimators.emplace_back();
     }
   }
   // Index of bearing `plant_id` ("bearing-K").
   static std::size_t index(const std::string& plant_id) { return std::stoul(plant_id.substr(8)); }
 
   void take(const ambid::bus::PlantSamples& b, bool identify) {
-    DescribedWindows& w = windows[index(b.plant_id)];
+    const std::size_t k = index(b.plant_id);
+    DescribedWindows& w = windows[k];
     w.add(b);
     while (w.full()) {
       const ambid::Experiment window = w.take();
       if (!identify) continue;
       try {
-        benchmark::DoNotOptimize(ambid::daemons::identify_window(window, b.plant_id, 0));
+        benchmark::DoNotOptimize(estimators[k].identify(window, b.plant_id, seq++));
       } catch (const ambid::Error&) {
         ++unidentified;
       }

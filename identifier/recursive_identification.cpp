@@ -51,6 +51,8 @@ nlohmann::json rows(const Eigen::MatrixXd& m) {
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentifyOptions options) : options_(options) {
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0))
     throw Error(kRpemWho + ": forgetting must be in (0, 1], got " + std::to_string(options.forgetting));
+  if (options.offset_random_walk && !(*options.offset_random_walk >= 0.0))
+    throw Error(kRpemWho + ": offset_random_walk must be >= 0, got " + std::to_string(*options.offset_random_walk));
 }
 RecursiveIdentification::~RecursiveIdentification() = default;
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentification&&) noexcept = default;
@@ -71,6 +73,7 @@ void RecursiveIdentification::add(const Experiment& stretch) {
         amb1dof_cold_start(amb1dof_nominal_structure(stretch, kRpemWho), spread, stretch.sample_time);
     Amb1dofRecursivePemOptions o;
     o.forgetting = options_.forgetting;
+    if (options_.offset_random_walk) o.offset_random_walk = *options_.offset_random_walk;
     if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
     estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time, o);
     plant_model_ = stretch.plant.model;
@@ -81,6 +84,11 @@ void RecursiveIdentification::add(const Experiment& stretch) {
   }
   for (Eigen::Index k = 0; k < s.y.rows(); ++k) estimator_->update(s.y.row(k).transpose(), s.u.row(k).transpose());
   next_time_ = stretch.t(stretch.samples() - 1) + sample_time_;
+}
+
+void RecursiveIdentification::relax(double carry) {
+  if (!(carry > 0.0 && carry <= 1.0)) throw Error(kRpemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
+  if (estimator_) estimator_->relax(carry);
 }
 
 WindowIdentification RecursiveIdentification::estimate() const {

@@ -11,7 +11,7 @@
 // and sensitivities; one of another plant model or sample time restarts everything.
 #include <cstdint>
 #include <memory>
-
+#include <optional>
 #include <string>
 
 #include "core/experiment.hpp"
@@ -26,6 +26,9 @@ struct RecursiveIdentifyOptions {
   // Memory 1 / (1 - forgetting) samples: 1 s at 10 kHz. 1: a growing memory (the batch limit),
   // for a plant that does not change: then the offsets do not random-walk either.
   double forgetting = 0.9999;
+  // Variance per sample of the offsets' random walk (Amb1dofRecursivePemOptions); empty: the
+  // family's default.
+  std::optional<double> offset_random_walk;
 };
 
 class RecursiveIdentification {
@@ -40,6 +43,11 @@ class RecursiveIdentification {
   // plant family, a missing signal or parameter), InsufficientData when the first stretch's
   // outputs do not vary (no scale to start from); the estimator is then unchanged.
   void add(const Experiment& stretch);
+
+  // Amb1dofRecursivePem::relax: the information so far scaled by `carry` in (0, 1] (Error
+  // otherwise), so that the next estimate rests mostly on the samples after this call. Nothing
+  // before the start.
+  void relax(double carry);
 
   bool started() const { return estimator_ != nullptr; }
   std::uint64_t samples() const;      // since the start

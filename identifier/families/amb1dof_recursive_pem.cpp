@@ -92,6 +92,19 @@ void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   started_ = true;
 }
 
+void Amb1dofRecursivePem::relax(double carry) {
+  if (!(carry > 0.0 && carry <= 1.0)) throw Error(kWho + ": carry must be in (0, 1], got " + std::to_string(carry));
+  // v and w only: the predictor gain K keeps its covariance (relaxed too, it let one window's
+  // step make the predictor unstable).
+  const Eigen::VectorXd variances = ud_.variances();
+  for (int k = 0; k < kGain; ++k) {
+    Parameters along = Parameters::Unit(k);
+    ud_.add((1.0 / carry - 1.0) * variances(k), along);
+  }
+  s1_ *= carry;
+  s2_ *= carry * carry;
+}
+
 void Amb1dofRecursivePem::relinearise() {
   since_relinearise_ = 0;
   for (int attempt = 0; attempt < 2; ++attempt) {

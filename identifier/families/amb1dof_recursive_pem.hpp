@@ -80,6 +80,17 @@ class Amb1dofRecursivePem {
   // After a gap in the samples: x^ restarts at y (at rest) and the sensitivities at zero; theta,
   // P and Lambda are kept.
   void restart(const Eigen::Vector3d& y);
+  // Between two published estimates: the information of every sample so far about v and w is
+  // scaled by `carry` (0 < carry <= 1; the variance of each of v1..v9, w1..w3 grows by a random
+  // walk to its value / carry; S1 <- carry S1, S2 <- carry^2 S2), a one-off forgetting. The next
+  // estimate then rests mostly on its own window's samples (with carry 0.1 and 0.5 s windows at
+  // a 1 s memory, 94 % of its weight), so successive estimates are nearly independent and the
+  // sigma of each is that of its window: what a detector comparing windows assumes. The
+  // predictor gain K keeps its covariance: relaxed too, one window's step in K made the
+  // predictor unstable (observer loop, 0.5 s windows: R1 stuck 30 % off for 2 s of
+  // projections). theta, the state and the sensitivities are kept. Throws Error for carry
+  // outside (0, 1].
+  void relax(double carry);
 
   Eigen::Matrix<double, 9, 1> v() const { return theta_.head<9>(); }
   Eigen::Matrix<double, 9, 9> covariance() const;  // of v, one-sigma^2 (see above)

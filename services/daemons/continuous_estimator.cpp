@@ -1,15 +1,22 @@
 #include "services/daemons/continuous_estimator.hpp"
 
+#include "core/error.hpp"
 #include "services/convert/identified_model.hpp"
 
 namespace ambid::daemons {
 
-ContinuousEstimator::ContinuousEstimator(ident::RecursiveIdentifyOptions options) : estimator_(options) {}
+ContinuousEstimator::ContinuousEstimator(ContinuousSettings settings)
+    : carry_(settings.carry), estimator_(settings.recursive) {
+  if (!(carry_ > 0.0 && carry_ <= 1.0))
+    throw Error("continuous estimator: carry must be in (0, 1], got " + std::to_string(carry_));
+}
 
 bus::IdentifiedModel ContinuousEstimator::identify(const Experiment& window, const std::string& plant_id,
                                                    std::uint64_t seq) {
   estimator_.add(window);
-  return convert::to_message(estimator_.estimate(), window, plant_id, seq, "rpem");
+  bus::IdentifiedModel model = convert::to_message(estimator_.estimate(), window, plant_id, seq, "rpem");
+  estimator_.relax(carry_);
+  return model;
 }
 
 }  // namespace ambid::daemons

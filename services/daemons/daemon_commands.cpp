@@ -3,13 +3,13 @@
 #include <memory>
 #include <string>
 
-#include "identifier/identify_window.hpp"
 #include "identifier/methods.hpp"
 #include "services/cli/commands.hpp"
 #include "services/daemons/daemon_options.hpp"
 #include "services/daemons/diagnostics_daemon.hpp"
 #include "services/daemons/frf_daemon.hpp"
 #include "services/daemons/identifier_daemon.hpp"
+#include "services/daemons/identify_window.hpp"
 #include "services/daemons/plant_daemon.hpp"
 
 namespace ambid::cli {
@@ -34,7 +34,7 @@ void add_daemon_commands(CLI::App& app) {
              daemons::run_plant_daemon);
   add_daemon(*daemon, "identifier", "identify windows of plant samples -> identified models",
              daemons::run_identifier_daemon)
-      ->footer("config key \"method\" (default " + std::string(ident::kDefaultWindowMethod) + "):\n" +
+      ->footer("config key \"method\" (default " + std::string(daemons::kDefaultDaemonMethod) + "):\n" +
                ident::method_table());
   add_daemon(*daemon, "diagnostics", "identified models -> trend store -> alerts (STALE when silent)",
              daemons::run_diagnostics_daemon);

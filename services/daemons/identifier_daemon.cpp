@@ -24,21 +24,21 @@ namespace {
 
 struct IdentifierConfig {
   WindowSettings windows{.window = 0.25, .settle = 0.25};
-  ident::IdentifyOptions identify = window_identify_options(kDefaultWindowMethod);
+  ident::IdentifyOptions identify = window_identify_options(kDefaultDaemonMethod);
   WindowFailureRule failures;
-  std::optional<ident::RecursiveIdentifyOptions> continuous;  // method rpem: one estimator, windows = publish periods
+  std::optional<ContinuousSettings> continuous;  // method rpem: one estimator, windows = publish periods
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
   reject_unknown_keys(j, "identifier config",
                       {"plants", "method", "window", "settle", "transient_samples", "failing_consecutive",
-                       "failing_recent", "failing_fraction", "publish_rate", "forgetting", "jackknife"});
+                       "failing_recent", "failing_fraction", "publish_rate", "forgetting", "carry", "jackknife"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
   if (!(c.windows.settle >= 0))
     throw Error("identifier config: settle must be >= 0 s, got " + std::to_string(c.windows.settle));
-  c.identify = window_identify_options(config_value<std::string>(j, "method", kDefaultWindowMethod),
+  c.identify = window_identify_options(config_value<std::string>(j, "method", kDefaultDaemonMethod),
                                        Eigen::Index(config_value(j, "transient_samples", 0)));
   // okid/closed-loop/projection report no uncertainty without it, and the diagnostics then
   // judge every window by the scatter of the baseline's, whatever the excitation of the window.
@@ -54,13 +54,17 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
     if (!(rate > 0) || !std::isfinite(rate))
       throw Error("identifier config: publish_rate must be > 0 Hz, got " + std::to_string(rate));
     c.windows.window = 1.0 / rate;
-    c.continuous = ident::RecursiveIdentifyOptions{};
-    c.continuous->forgetting = config_value(j, "forgetting", c.continuous->forgetting);
-    if (!(c.continuous->forgetting > 0 && c.continuous->forgetting <= 1))
-      throw Error("identifier config: forgetting must be in (0, 1], got " + std::to_string(c.continuous->forgetting));
-  } else if (j.contains("publish_rate") || j.contains("forgetting")) {
-    throw Error("identifier config: publish_rate and forgetting are for method rpem only (method " + c.identify.method +
-                " publishes once per window)");
+    c.continuous = ContinuousSettings{};
+    double& forgetting = c.continuous->recursive.forgetting;
+    forgetting = config_value(j, "forgetting", forgetting);
+    if (!(forgetting > 0 && forgetting <= 1))
+      throw Error("identifier config: forgetting must be in (0, 1], got " + std::to_string(forgetting));
+    c.continuous->carry = config_value(j, "carry", c.continuous->carry);
+    if (!(c.continuous->carry > 0 && c.continuous->carry <= 1))
+      throw Error("identifier config: carry must be in (0, 1], got " + std::to_string(c.continuous->carry));
+  } else if (j.contains("publish_rate") || j.contains("forgetting") || j.contains("carry")) {
+    throw Error("identifier config: publish_rate, forgetting and carry are for method rpem only (method " +
+                c.identify.method + " publishes once per window)");
   }
   // Signed, so that a negative value is named instead of wrapping around.
   const auto count = [&](const char* key, std::size_t fallback) {

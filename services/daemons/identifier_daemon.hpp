@@ -12,13 +12,15 @@
 //
 // Config (JSON, every key optional):
 //   {"plants": ["bearing-1", ...] | "all" (default: the --plant-id),
-//    "method": "closed-loop" (identifier/identify_window.hpp; any of identifier/methods.hpp,
+//    "method": "rpem" (kDefaultDaemonMethod, identify_window.hpp; any of identifier/methods.hpp,
 //    listed by `ambid daemon identifier --help`; an unknown name is refused at start),
 //    "window": 0.25 (s of samples per identification),
 //    "settle": 0.25 (s dropped at the start of every record: the transient from the nominal
 //    operating point to the plant's own), "transient_samples": 0 (samples skipped at the start of every window),
-//    "publish_rate": 1 / window (Hz), "forgetting": 0.9999 (method "rpem" only: one recursive
-//    estimator runs on every sample and publishes at publish_rate; continuous_estimator.hpp),
+//    "publish_rate": 1 / window (Hz), "forgetting": 0.9999, "carry": 0.1 (method "rpem" only:
+//    one recursive estimator per plant runs on every sample and publishes at publish_rate, the
+//    information carried from one published estimate to the next scaled by carry;
+//    continuous_estimator.hpp),
 //    "failing_consecutive": 4, "failing_recent": 20, "failing_fraction": 0.5 (when windows keep
 //    failing: window_failures.hpp)}
 // A window the method cannot identify is skipped and counted by reason

@@ -59,6 +59,12 @@ TEST(ContinuousEstimator, PublishesEveryWindowAndTracksTheHotCoil) {
   EXPECT_GE(published, 20u);
 }
 
+TEST(ContinuousEstimator, RefusesACarryOutsideZeroToOne) {
+  for (double carry : {0.0, -0.1, 1.5, std::nan("")})
+    EXPECT_THROW(ContinuousEstimator(ContinuousSettings{.carry = carry}), Error) << carry;
+  EXPECT_NO_THROW(ContinuousEstimator(ContinuousSettings{.carry = 1.0}));
+}
+
 TEST(ContinuousEstimator, RefusesAWindowOfAnotherPlant) {
   sim::ScenarioOptions o;
   o.duration = 0.3;

@@ -198,7 +198,8 @@ TEST(DescriptionStack, RecordKeepsTheDescriptionReplayAndIdentifyGiveTheSamePara
   auto r1 = [](const Experiment& e, Eigen::Index begin) {
     convert::SampleWindow window(e, 2500);
     window.add(convert::sample_batch(e, begin, 2500, "p", 0, 0.0));
-    for (const auto& p : daemons::identify_window(window.take(), "p", 0).physical)
+    for (const auto& p :
+         daemons::identify_window(window.take(), "p", 0, daemons::window_identify_options("pem")).physical)
       if (p.name == "R1") return p.value;
     return std::nan("");
   };

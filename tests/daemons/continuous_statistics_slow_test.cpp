@@ -1,0 +1,126 @@
+// The identifier daemon's default estimator (ContinuousEstimator: rpem, published once per
+// window, the information carried to the next window scaled by carry 0.1) on records it did
+// not generate (tests/support/amb1dof_records.hpp: the NONLINEAR bearing, RK4 at 16 steps per
+// sample, four controllers) at a real bearing's sensor noise (0.1 um on x, 1 mA on each
+// current), 2 V PRBS, 64 s. For R1, R2, kw1, kw2 (v5, v7, v8, v9 against the true plant
+// linearised where its loop settles), over the estimates published after the first kSkip s:
+// - published every 1 s (issue 13: "per 1 s window at <= 2 V"): their scatter (one sigma,
+//   relative) is at most 1 % on the LQR and observer loops; the median reported sigma is within
+//   a factor 1.5 of that scatter; their mean within 3 standard errors plus 0.5 % of the truth.
+//   The PID and lead-lag loops' stiff current loops (1000 V/A) leave the coil parameters far
+//   less excited: R1, R2 scatter 3.2-3.6 % per 1 s window there (5.4-6.3 % per 0.5 s;
+//   measured, seed 11), bounded here by 5 %; their sigma matches that scatter as well.
+// - published every 0.5 s (deploy/config/identifier.json): the sigma matches the scatter too,
+//   and successive estimates are nearly independent, as the diagnostics' detectors assume
+//   (lag-1 correlation <= 0.3; measured -0.05 to 0.23). With carry 1 (the plain 1 s memory) it
+//   was 0.84-0.87 on the observer loop, where the reported sigma was also 3-4x below the scatter.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "identifier/identify_experiment.hpp"
+#include "services/daemons/continuous_estimator.hpp"
+#include "support/amb1dof_records.hpp"
+
+namespace ambid::daemons {
+namespace {
+
+constexpr double kSkip = 4.0;                                        // s: the start from the nominal model
+const std::vector<std::string> kChecked = {"v5", "v7", "v8", "v9"};  // R1, R2, kw1, kw2
+
+double max_scatter(const std::string& controller) {
+  return controller == "pid" || controller == "leadlag" ? 0.05 : 0.01;
+}
+
+double mean(const std::vector<double>& x) {
+  double s = 0.0;
+  for (double v : x) s += v;
+  return s / double(x.size());
+}
+double sd(const std::vector<double>& x) {
+  const double m = mean(x);
+  double s = 0.0;
+  for (double v : x) s += (v - m) * (v - m);
+  return std::sqrt(s / double(x.size() - 1));
+}
+double median(std::vector<double> x) {
+  std::nth_element(x.begin(), x.begin() + std::ptrdiff_t(x.size() / 2), x.end());
+  return x[x.size() / 2];
+}
+double lag1_correlation(const std::vector<double>& x) {
+  const double m = mean(x);
+  double c0 = 0.0, c1 = 0.0;
+  for (std::size_t k = 0; k < x.size(); ++k) c0 += (x[k] - m) * (x[k] - m);
+  for (std::size_t k = 1; k < x.size(); ++k) c1 += (x[k] - m) * (x[k - 1] - m);
+  return c1 / c0;
+}
+
+// One parameter's published estimates, relative to the truth.
+struct Series {
+  std::vector<double> values, sigmas;
+};
+
+// The record's settled part in windows of `window` s through one default estimator; the
+// estimates after kSkip s by parameter name.
+std::map<std::string, Series> publish(const test_support::Amb1dofRecord& record, double window) {
+  const Experiment& e = record.experiment;
+  const auto per_window = Eigen::Index(std::lround(window / e.sample_time));
+  ContinuousEstimator estimator;
+  std::map<std::string, Series> out;
+  std::uint64_t seq = 0;
+  for (Eigen::Index begin = record.settled; begin + per_window <= e.samples(); begin += per_window) {
+    const bus::IdentifiedModel m = estimator.identify(ident::experiment_segment(e, begin, begin + per_window), "p", seq++);
+    if (m.time - e.t(record.settled) < kSkip) continue;
+    for (const bus::Estimate& p : m.parameters) {
+      const double truth = record.truth.at(p.name);
+      out[p.name].values.push_back(p.value / truth - 1.0);
+      out[p.name].sigmas.push_back(p.sigma / truth);
+    }
+  }
+  return out;
+}
+
+class ContinuousStatistics : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ContinuousStatistics, SigmaIsTheScatterOfThePublishedEstimates) {
+  test_support::Amb1dofRecordOptions o;
+  o.controller = GetParam();
+  o.amplitude = 2.0;
+  o.duration = 64.0;
+  o.position_noise = 1e-7;
+  o.current_noise = 1e-3;
+  o.seed = 11;
+  const test_support::Amb1dofRecord record = test_support::simulate_amb1dof_record(o);
+  const std::map<std::string, Series> second = publish(record, 1.0), half = publish(record, 0.5);
+  for (const std::string& name : kChecked) {
+    const Series& s = second.at(name);
+    ASSERT_EQ(s.values.size(), 60u);
+    const double scatter = sd(s.values), sigma = median(s.sigmas), bias = mean(s.values);
+    RecordProperty(name + "_scatter_1s", std::to_string(scatter));
+    RecordProperty(name + "_sigma_1s", std::to_string(sigma));
+    EXPECT_LE(scatter, max_scatter(GetParam())) << name;
+    EXPECT_LE(sigma, 1.5 * scatter) << name;
+    EXPECT_GE(sigma, scatter / 1.5) << name;
+    EXPECT_LE(std::abs(bias), 3.0 * scatter / std::sqrt(double(s.values.size())) + 0.005) << name;
+
+    const Series& h = half.at(name);
+    const double half_scatter = sd(h.values), half_sigma = median(h.sigmas), correlation = lag1_correlation(h.values);
+    RecordProperty(name + "_scatter_0.5s", std::to_string(half_scatter));
+    RecordProperty(name + "_sigma_0.5s", std::to_string(half_sigma));
+    RecordProperty(name + "_lag1_0.5s", std::to_string(correlation));
+    EXPECT_LE(half_sigma, 1.5 * half_scatter) << name;
+    EXPECT_GE(half_sigma, half_scatter / 1.5) << name;
+    EXPECT_LE(correlation, 0.3) << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Controllers, ContinuousStatistics,
+                         ::testing::ValuesIn(test_support::amb1dof_record_controllers()),
+                         [](const auto& param_info) { return param_info.param; });
+
+}  // namespace
+}  // namespace ambid::daemons
