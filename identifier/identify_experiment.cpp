@@ -396,7 +396,17 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
                                {"condition_number", fit.condition_number},
                                {"offset", {fit.offset(0), fit.offset(1), fit.offset(2)}},
                                {"predictor_gain", std::move(gain)},
-                               {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}}};
+                               {"residual_rms", {fit.residual_rms(0), fit.residual_rms(1), fit.residual_rms(2)}},
+                               {"residual_check",
+                                {{"z", fit.residual_check.z},
+                                 {"correlation", fit.residual_check.correlation},
+                                 {"worst", fit.residual_check.worst},
+                                 {"whiteness_z", fit.residual_check.whiteness_z},
+                                 {"whiteness_worst", fit.residual_check.whiteness_worst},
+                                 {"lags", fit.residual_check.lags},
+                                 {"correlations", fit.residual_check.correlations},
+                                 {"max_z", Amb1dofPredictionErrorOptions{}.max_residual_z},
+                                 {"max_correlation", Amb1dofPredictionErrorOptions{}.max_residual_correlation}}}};
 }
 
 }  // namespace detail

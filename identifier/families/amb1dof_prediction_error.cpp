@@ -166,6 +166,8 @@ Eigen::Vector3d checked_spread(const Eigen::MatrixXd& y, const Eigen::MatrixXd& 
     throw Error(kPemWho + ": score_block and min_blocks must be >= 1");
   if (options.max_iterations < 0 || !(options.step_tolerance > 0.0))
     throw Error(kPemWho + ": max_iterations must be >= 0 and step_tolerance > 0");
+  if (options.residual_lags < 1 || !(options.max_residual_z > 0.0) || !(options.max_residual_correlation >= 0.0))
+    throw Error(kPemWho + ": residual_lags must be >= 1, max_residual_z > 0 and max_residual_correlation >= 0");
   if (N < options.score_block * options.min_blocks)
     throw InsufficientData(kPemWho + ": " + std::to_string(N) + " samples; the uncertainty needs at least " +
                            std::to_string(options.min_blocks) + " blocks of " + std::to_string(options.score_block));
@@ -187,9 +189,9 @@ void check_start(const Vector9& v) {
 
 // Refines the ranked starts (the next one when the solver cannot evaluate a start) and fills
 // the fit: estimates, rank and conditioning, sandwich covariance, continuous and discrete model.
-Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const std::vector<Parameters>& starts,
-                                 const std::vector<std::size_t>& order, bool weighting_pass,
-                                 const Eigen::Vector3d& spread, double sample_time,
+Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const Eigen::MatrixXd& r,
+                                 const std::vector<Parameters>& starts, const std::vector<std::size_t>& order,
+                                 bool weighting_pass, const Eigen::Vector3d& spread, double sample_time,
                                  const Amb1dofPredictionErrorOptions& options) {
   // Cold: pass 1 re-weights the outputs by their rms at every step (the fixed point is the
   // maximum-likelihood estimate for independent Gaussian errors) and stops within
@@ -227,10 +229,22 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
       solution = levenberg_marquardt(problem.least_squares(), p, second);
       if (!weighting_pass) start_cost = solution->initial_cost;
     } catch (const InsufficientData& error) {
-      failure = error.what();
+      failure += (failure.empty() ? "" : "; ") + std::string(error.what());
+      continue;
+    }
+    const Parameters theta = problem.theta(solution->p);
+    const std::optional<Eigen::MatrixXd> errors = predictor.errors(theta);
+    if (!errors) throw InsufficientData(kPemWho + ": the predictor diverges at the solution");
+    const ResidualIndependence check =
+        residual_independence(*errors, {"x", "i1", "i2"}, r, {"r1", "r2"}, options.residual_lags);
+    if (check.z > options.max_residual_z && std::abs(check.correlation) > options.max_residual_correlation) {
+      failure += (failure.empty() ? "" : "; ") + kPemWho + ": the prediction errors still hold the past r (" +
+                 check.worst + ": z = " + std::to_string(check.z) + ", correlation " +
+                 std::to_string(check.correlation) + ")";
       continue;
     }
     Amb1dofPredictionErrorFit fit;
+    fit.residual_check = check;
     fit.start_index = static_cast<int>(index);
     fit.iterations = iterations + solution->iterations;
     fit.converged = solution->converged;
@@ -246,7 +260,6 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
     fit.condition_number = curvature.condition_number;
     Eigen::MatrixXd score_covariance = Eigen::MatrixXd::Zero(pem::kParameters, pem::kParameters);
     for (const Parameters& g : problem.scores()) score_covariance += g * g.transpose();
-    const Parameters theta = problem.theta(solution->p);
     const Eigen::MatrixXd cov_p = curvature.inverse_gram * score_covariance * curvature.inverse_gram;
     fit.v = theta.head<9>();
     fit.offset = theta.segment<3>(9);
@@ -261,9 +274,7 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const s
         throw InsufficientData(kPemWho + ": the data do not determine v" + std::to_string(i + 1) + " (one sigma " +
                                std::to_string(100.0 * relative) + " % of its value)");
     }
-    const std::optional<Eigen::Vector3d> squares = predictor.squares(theta);
-    if (!squares) throw InsufficientData(kPemWho + ": the predictor diverges at the solution");
-    fit.residual_rms = (*squares / double(predictor.samples())).cwiseSqrt();
+    fit.residual_rms = (errors->colwise().squaredNorm().transpose() / double(predictor.samples())).cwiseSqrt();
 
     Eigen::Matrix4d A;
     Eigen::Matrix<double, 4, 3> B;
@@ -313,7 +324,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   std::sort(ranked.begin(), ranked.end());
   std::vector<std::size_t> order;
   for (const auto& entry : ranked) order.push_back(entry.second);
-  return refine(predictor, starts, order, true, spread, sample_time, options);
+  return refine(predictor, r, starts, order, true, spread, sample_time, options);
 }
 
 Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u,
@@ -328,7 +339,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixX
   const Parameters theta = pem::pack(start.v, start.offset, first_state(y), start.predictor_gain);
   if (!predictor.squares(theta))
     throw InsufficientData(kPemWho + ": the predictor of the warm start diverges on this record");
-  return refine(predictor, {theta}, {0}, false, spread, sample_time, options);
+  return refine(predictor, r, {theta}, {0}, false, spread, sample_time, options);
 }
 
 }  // namespace ambid::ident

@@ -93,19 +93,33 @@ ZeroOrderHold zero_order_hold(const Parameters& theta, double sample_time, bool 
 Amb1dofPredictor::Amb1dofPredictor(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time)
     : y_(y), u_(u), sample_time_(sample_time) {}
 
-std::optional<Eigen::Vector3d> Amb1dofPredictor::squares(const Parameters& theta) const {
+template <typename Each>
+bool Amb1dofPredictor::predict(const Parameters& theta, Each&& each) const {
   const ZeroOrderHold zoh = zero_order_hold(theta, sample_time_, false);
   const Gain K = gain_of(theta);
   Eigen::Vector4d x = theta.segment<4>(kInitial);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero(), e;
+  Eigen::Vector3d e;
   for (Index t = 0; t < samples(); ++t) {
     e << y_(t, 0) - x(0), y_(t, 1) - x(2), y_(t, 2) - x(3);
-    sum += e.cwiseAbs2();
+    each(t, e);
     x = zoh.Ad * x + zoh.Bd.col(0) * u_(t, 0) + zoh.Bd.col(1) * u_(t, 1) + zoh.Bd.col(2) + K * e;
-    if (t % 1024 == 0 && !sum.allFinite()) return std::nullopt;  // diverged: stop early
+    if (t % 1024 == 0 && !x.allFinite()) return false;  // diverged: stop early
   }
-  if (!sum.allFinite()) return std::nullopt;
+  return x.allFinite();
+}
+
+std::optional<Eigen::Vector3d> Amb1dofPredictor::squares(const Parameters& theta) const {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  if (!predict(theta, [&](Index, const Eigen::Vector3d& e) { sum += e.cwiseAbs2(); }) || !sum.allFinite())
+    return std::nullopt;
   return sum;
+}
+
+std::optional<Eigen::MatrixXd> Amb1dofPredictor::errors(const Parameters& theta) const {
+  Eigen::MatrixXd out(samples(), 3);
+  if (!predict(theta, [&](Index t, const Eigen::Vector3d& e) { out.row(t) = e.transpose(); }) || !out.allFinite())
+    return std::nullopt;
+  return out;
 }
 
 bool Amb1dofPredictor::linearise(const Parameters& theta, const Eigen::Vector3d& weight, const Parameters& scale,

@@ -58,6 +58,9 @@ class Amb1dofPredictor {
   // diverges (a non-finite error).
   std::optional<Eigen::Vector3d> squares(const Parameters& theta) const;
 
+  // The prediction errors e[t] (samples x 3, [x, i1, i2]); nullopt when the predictor diverges.
+  std::optional<Eigen::MatrixXd> errors(const Parameters& theta) const;
+
   // Rows of the weighted, column-scaled Jacobian and their targets, `block` samples at a time
   // (the last block may be shorter), sample-major with the outputs in order:
   //   jacobian(3 s + j, k) = weight_j scale_k d e_j[s] / d theta_k,   target(3 s + j) = -weight_j e_j[s].
@@ -68,6 +71,10 @@ class Amb1dofPredictor {
                  const Rows& rows) const;
 
  private:
+  // Runs the predictor, giving each sample's error to `each(t, e)`; false when it diverges.
+  template <typename Each>
+  bool predict(const Parameters& theta, Each&& each) const;
+
   const Eigen::MatrixXd& y_;
   const Eigen::MatrixXd& u_;
   double sample_time_;

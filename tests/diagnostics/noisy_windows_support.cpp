@@ -21,6 +21,7 @@ NoisyWindows noisy_windows(const NoisyRecord& o, double window, double start) {
   r.settle = 0.0;
   r.position_noise = kPositionNoise;
   r.current_noise = kCurrentNoise;
+  r.clock_divider = test_support::prbs_clock_divider(o.controller);
   r.seed = o.seed;
   NoisyWindows out{test_support::simulate_amb1dof_record(r), {}};
   const Experiment& e = out.record.experiment;

@@ -48,6 +48,7 @@ inline Amb1dofRecordOptions noisy_record(const std::string& controller, double d
   o.duration = duration;
   o.position_noise = kPositionNoise;
   o.current_noise = kCurrentNoise;
+  o.clock_divider = test_support::prbs_clock_divider(controller);
   o.seed = seed;
   return o;
 }

@@ -170,6 +170,35 @@ TEST(Amb1dofPredictionError, UnexcitedLoopIsRefused) {
   EXPECT_THROW(fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {d.v}), InsufficientData);
 }
 
+TEST(Amb1dofPredictionError, ResidualCheckPassesTheSolutionAndRefusesAWrongModel) {
+  // The solution on a realistic noisy record: prediction errors white and independent of r.
+  const Amb1dofRecord record = testing::simulate_amb1dof_record(testing::noisy_record("lqr", 1.0, 9));
+  const nlohmann::json check = testing::identify_pem(record).extra.json()["pem"]["residual_check"];
+  ::testing::Test::RecordProperty("residual_z", testing::sci(check["z"].get<double>()));
+  EXPECT_LT(check["z"].get<double>(), 5.0) << check["worst"];
+  EXPECT_EQ(check["lags"].get<int>(), 20);
+  EXPECT_EQ(check["correlations"].get<int>(), 3 * 3 * 20);
+  ::testing::Test::RecordProperty("whiteness_z", testing::sci(check["whiteness_z"].get<double>()));
+  // kw1 +50 % held where it starts (no iteration): its errors still hold the past r1 (measured
+  // z 19, correlation -0.16: below the default correlation bound, so refused only without it).
+  // Held the same way, ks, kr1, kr2 of the wrong sign gave z 5.4, correlation 0.04; R1 +30 %,
+  // R1 x 2 and v1 +50 % passed even without the bound: the free predictor gain absorbs them.
+  const Direct d = direct_inputs(record.experiment);
+  Eigen::Matrix<double, 9, 1> wrong = d.v;
+  wrong(7) *= 1.5;  // v8 = kw1 / L1
+  Amb1dofPredictionErrorOptions o;
+  o.max_iterations = 0;
+  EXPECT_NO_THROW(fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {wrong}, o));
+  o.max_residual_correlation = 0.0;
+  try {
+    fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {wrong}, o);
+    ADD_FAILURE() << "a model with kw1 +50 % passed the residual check";
+  } catch (const InsufficientData& e) {
+    EXPECT_NE(std::string(e.what()).find("still hold the past r (e_i1 with r1 at lag 1"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Amb1dofPredictionError, TooShortRecordAndBadInputsAreRefused) {
   const Direct d = direct_inputs(sim::simulate_scenario(noisy_scenario(0.09)));  // 900 samples < 10 blocks of 100
   try {

@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 #include "plant_sim/amb1dof_voltage.hpp"
 #include "plant_sim/closed_loop.hpp"
+#include "plant_sim/excitation.hpp"
 #include "plant_sim/observer_controller.hpp"
 #include "plant_sim/scenario.hpp"
 
@@ -48,6 +52,20 @@ sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
     scenario.header.controller = sim::design_observer_controller(
         nominal.linearize(), o.sample_time, scenario.header.u_names, scenario.header.y_names, other_observer_options());
   }
+  const int divider = o.clock_divider;
+  if (divider < 1) throw Error("amb1dof records: clock_divider must be >= 1, got " + std::to_string(divider));
+  if (excited && o.excitation == "prbs" && divider > 1) {
+    sim::PrbsOptions p;
+    const Eigen::Index samples = scenario.options.samples;
+    p.clock_divider = divider;
+    p.register_length = std::clamp(int(std::ceil(std::log2(double(samples / divider) + 1.0))), 6, 24);
+    p.amplitude = o.amplitude;
+    p.seed = o.seed;
+    p.channels = 2;
+    sim::Excitation e = sim::prbs(p, samples, o.sample_time);
+    scenario.options.excitation = std::move(e.samples);
+    scenario.header.extra.json()["excitation"] = std::move(e.description.json());
+  }
   scenario.options.substeps = o.substeps;
   return scenario;
 }
@@ -64,6 +82,10 @@ sim::ObserverControllerOptions other_observer_options() {
   o.V = diagonal({1e-12, 1e-4, 1e-4});
   o.observer_pole_radius = 0.9;
   return o;
+}
+
+int prbs_clock_divider(const std::string& controller) {
+  return controller == "pid" || controller == "leadlag" ? 30 : 1;
 }
 
 const std::vector<std::string>& amb1dof_record_controllers() {

@@ -31,11 +31,21 @@ namespace ambid::test_support {
 // "lqr", "pid", "leadlag", "observer".
 const std::vector<std::string>& amb1dof_record_controllers();
 
+// The PRBS clock divider noisy records use under `controller` (each register clock held that
+// many samples): 30 under the decentralised loops ("pid", "leadlag"), 1 under the others. Their stiff current
+// loops (1000 V/A) follow the current command up to ~380 Hz, so the coil's own R and L show
+// only in what the excitation puts below that; a PRBS clocked every sample spreads its power
+// to 5 kHz, one clocked every 3 ms puts 90 % of it below 330 Hz (1 s windows at 0.1 um / 1 mA:
+// R1, R2 scatter ~0.6 % instead of ~2.3 %). Noise-free records keep 1: there pem's noise-free
+// convergence test (step below 0.05 sigma) was not met with 30 under pid and leadlag.
+int prbs_clock_divider(const std::string& controller);
+
 struct Amb1dofRecordOptions {
   std::string controller = "lqr";
   std::map<std::string, double> true_parameters;  // overrides of the nominal parameters (e.g. R1)
   double amplitude = 1.0;                         // PRBS on each input (V); rms for multisine
   std::string excitation = "prbs";                // or multisine (band f_min..f_max, plant_sim/scenario.hpp)
+  int clock_divider = 1;                          // of the PRBS (prbs_clock_divider)
   double f_min = 1.0, f_max = 1000.0;             // Hz
   double duration = 2.0;                          // s, after the settling
   double settle = 0.5;                            // s of settling at the start of the record
