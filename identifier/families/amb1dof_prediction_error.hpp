@@ -56,6 +56,10 @@ struct Amb1dofPredictionErrorOptions {
   double max_condition = 1e12;
   Eigen::Index score_block = 100;  // samples per block of the score covariance (10 ms at 10 kHz)
   Eigen::Index min_blocks = 10;    // fewer blocks in the record: InsufficientData
+  // Per sample, or empty: a controller clamp acted (the recorded u is not what the plant got);
+  // the prediction error whose prediction used that u is left out of the cost
+  // (amb1dof_predictor.hpp).
+  std::vector<bool> clamped;
 };
 
 struct Amb1dofPredictionErrorFit {
@@ -73,6 +77,7 @@ struct Amb1dofPredictionErrorFit {
   bool converged = false;                      // false: stopped at max_iterations or without progress
   std::string termination;                     // why the solver stopped
   double start_cost = 0.0, final_cost = 0.0;   // weighted 0.5 sum e^2: at the start (its weights), at the end
+  Eigen::Index scored_samples = 0;             // whose prediction error is in the cost
 };
 
 // y: samples x 3 ([x, i1, i2] deviations), u: samples x 2 ([u1, u2] deviations, the recorded
