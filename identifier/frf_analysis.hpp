@@ -82,6 +82,10 @@ struct FrfReport {
   std::optional<ControllerCheck> controller_check;
   std::vector<FittedPair> fits;
   std::optional<PeriodicExcitation> periodic;  // method "periodic": what was detected and used
+  // Samples where a controller clamp acted (controller.output_limits, state_limits): not
+  // exogenous, so no block (periodic: period, and the one after it; Welch: segment) holding
+  // one is averaged. blocks_left_out counts those blocks.
+  Eigen::Index clamped_samples = 0, blocks_left_out = 0;
   std::vector<std::string> notes;
   std::vector<std::string> warnings;  // e.g. a sidecar description that the recorded r contradicts
 };

@@ -14,6 +14,8 @@
 // and M_eff the number of segments reduced for the correlation of overlapping windowed
 // segments (Welch 1967). Coherence: multiple coherence of each output (input) with all
 // references, gamma^2 = [S_yr S_rr^-1 S_ry]_ii / S_yy,ii.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "identifier/frf_types.hpp"
@@ -27,21 +29,25 @@ struct WelchFrfOptions {
   Eigen::Index first_sample = 0;     // samples before it are discarded (transient)
   double f_min = 0.0;                // keep lines with f_min <= f <= f_max (0: up to Nyquist)
   double f_max = 0.0;
+  // Per sample (rows of r, u, y): not exogenous (a controller clamp acted there); a segment
+  // holding one is skipped. Empty: none.
+  std::vector<bool> left_out;
 };
 
 struct WelchFrf {
-  Frf plant;                         // G indirect, with asymptotic variance (variance_dof 0)
-  Frf plant_direct;                  // G_dir, no variance
-  Frf output_from_reference;         // T_yr
-  Frf input_from_reference;          // T_ur
-  Eigen::MatrixXd output_coherence;  // lines x outputs, in [0, 1]
-  Eigen::MatrixXd input_coherence;   // lines x inputs
-  Eigen::Index segments = 0;
-  double effective_segments = 0.0;  // M_eff
+  Frf plant;                          // G indirect, with asymptotic variance (variance_dof 0)
+  Frf plant_direct;                   // G_dir, no variance
+  Frf output_from_reference;          // T_yr
+  Frf input_from_reference;           // T_ur
+  Eigen::MatrixXd output_coherence;   // lines x outputs, in [0, 1]
+  Eigen::MatrixXd input_coherence;    // lines x inputs
+  Eigen::Index segments = 0;          // averaged
+  Eigen::Index skipped_segments = 0;  // holding a sample left out (WelchFrfOptions::left_out)
+  double effective_segments = 0.0;    // M_eff
 };
 
 // r, u, y: samples x signals, deviations. Throws Error for inconsistent sizes or options and
-// InsufficientData when fewer segments than references + 1 fit, or at a line where S_rr or
+// InsufficientData when fewer segments than references + 1 fit (or remain after skipping), or at a line where S_rr or
 // S_ur is singular (names the line).
 WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                             const WelchFrfOptions& options);

@@ -286,6 +286,30 @@ void require(const IdentificationMethod& method, const Experiment& e) {
                 "' needs the controller that closed the loop; the experiment has no controller");
 }
 
+// The plant input the controller's output clamps let through, as replay applies them
+// (experiment-format.md): the recorded u (the command) clamped into controller.output_limits;
+// deviations, in the columns of s.u.
+Eigen::MatrixXd applied_input(const Experiment& e, const LoopSignals& s) {
+  Eigen::MatrixXd u = s.u;
+  const Eigen::VectorXd op = e.operating_values(s.u_names);
+  for (std::size_t i = 0; e.controller && i < e.controller->output_limits.size(); ++i) {
+    const auto it = std::find(s.u_names.begin(), s.u_names.end(), e.controller->outputs[i]);
+    if (it == s.u_names.end()) continue;
+    const Index j = it - s.u_names.begin();
+    const Limit& limit = e.controller->output_limits[i];
+    u.col(j) = (u.col(j).array() + op(j)).cwiseMax(limit.lo).cwiseMin(limit.hi) - op(j);
+  }
+  return u;
+}
+
+// The samples where a controller clamp acted leave their prediction errors out of pem's cost.
+Amb1dofPredictionErrorOptions pem_options(const Experiment& e) {
+  Amb1dofPredictionErrorOptions o;
+  const ControllerReplay clamps = clamped_samples(e);
+  if (clamps.clamped_samples > 0) o.clamped = clamps.clamped;
+  return o;
+}
+
 // Starts from `closed-loop`, `deadbeat-iv`, `deadbeat` (those that succeed) and the nominal
 // model, then the prediction-error refinement from the best of them; or from
 // options.pem_warm_start alone.
@@ -293,7 +317,8 @@ Amb1dofPredictionErrorFit pem_fit(const Experiment& e, const IdentifyOptions& o,
                                   std::string& start_name) {
   if (o.pem_warm_start) {
     start_name = "warm";
-    return fit_amb1dof_prediction_error_from(s.y, s.u, s.r, e.sample_time, *o.pem_warm_start);
+    return fit_amb1dof_prediction_error_from(s.y, applied_input(e, s), s.r, e.sample_time, *o.pem_warm_start,
+                                             pem_options(e));
   }
   std::vector<std::string> start_names, failures;
   std::vector<Eigen::Matrix<double, 9, 1>> starts;
@@ -330,7 +355,8 @@ Amb1dofPredictionErrorFit pem_fit(const Experiment& e, const IdentifyOptions& o,
     for (const auto& f : failures) all += (all.empty() ? "" : "; ") + f;
     throw InsufficientData(kWho + ": method 'pem' found no starting estimate (" + all + ")");
   }
-  Amb1dofPredictionErrorFit fit = fit_amb1dof_prediction_error(s.y, s.u, s.r, e.sample_time, starts);
+  Amb1dofPredictionErrorFit fit =
+      fit_amb1dof_prediction_error(s.y, applied_input(e, s), s.r, e.sample_time, starts, pem_options(e));
   start_name = start_names[std::size_t(fit.start_index)];
   return fit;
 }
@@ -391,6 +417,7 @@ void fit_pem(const Experiment& e, const IdentifyOptions& o, Model& model) {
   for (Index i = 0; i < 4; ++i)
     gain.push_back({fit.predictor_gain(i, 0), fit.predictor_gain(i, 1), fit.predictor_gain(i, 2)});
   model.extra.json()["pem"] = {{"start", start_name},
+                               {"scored_samples", fit.scored_samples},
                                {"iterations", fit.iterations},
                                {"converged", fit.converged},
                                {"condition_number", fit.condition_number},
@@ -454,8 +481,8 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
   const Index fit_clamped = count_clamped(fit);
   std::string clamp_handling = "none in the fit window";
-  if (fit_clamped > 0 && method.leaves_out_clamped) {
-    clamp_handling = "left out of the ARX regressions (every equation whose window holds one)";
+  if (fit_clamped > 0 && !method.leaves_out_clamped.empty()) {
+    clamp_handling = method.leaves_out_clamped;
   } else if (fit_clamped > 0) {
     const auto [begin, end] = longest_unclamped_stretch(fit);
     if (end - begin < 2)
@@ -477,7 +504,7 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   try {
     method.fit(fit, resolved, model);
   } catch (const InsufficientData& error) {
-    if (fit_clamped == 0 || method.leaves_out_clamped) throw;
+    if (fit_clamped == 0 || !method.leaves_out_clamped.empty()) throw;
     throw InsufficientData(std::string(error.what()) + " (" + clamp_handling + ")");
   }
   model.discrete.sample_time = e.sample_time;

@@ -26,6 +26,8 @@ std::string padded(const std::string& text, std::size_t width) {
   return text + std::string(width > text.size() ? width - text.size() : 0, ' ');
 }
 
+constexpr const char* kArxLeavesOut = "left out of the ARX regressions (every equation whose window holds one)";
+
 }  // namespace
 
 const std::vector<IdentificationMethod>& method_registry() {
@@ -35,15 +37,17 @@ const std::vector<IdentificationMethod>& method_registry() {
       {"deadbeat-iv", true, true, true,
        "deadbeat by instrumental variables (the delayed r): consistent under sensor noise", detail::fit_deadbeat_iv},
       {"okid", false, false, false, "ARX of y on the plant input u, OKID Markov parameters, ERA", detail::fit_okid,
-       true},
+       kArxLeavesOut},
       {"closed-loop", true, true, false, "known-controller identification from r to y (Lee ch. 2)",
-       detail::fit_closed_loop, true},
+       detail::fit_closed_loop, kArxLeavesOut},
       {"projection", false, true, false, "projection filters with unknown feedback uf = u - r (Lee ch. 4)",
-       detail::fit_projection, true},
+       detail::fit_projection, kArxLeavesOut},
       {"pem", true, true, true,
        "prediction error (exact sensitivities, QR Levenberg-Marquardt) from the best of closed-loop, deadbeat-iv, "
        "deadbeat, nominal; noise-consistent",
-       detail::fit_pem},
+       detail::fit_pem,
+       "left out of the prediction-error cost (the error of every sample whose one-step prediction used a clamped "
+       "input; the predictor is driven by the clamped input, as replay applies it)"},
       {"rpem", false, false, true,
        "recursive prediction error (seed 001: sample by sample, UD covariance, forgetting 1 s) from the nominal "
        "model; the estimate at the record's end",

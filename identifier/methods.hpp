@@ -27,10 +27,10 @@ struct IdentificationMethod {
   // the requirements above and resolved the default instrument lags in `options` (the ARX
   // methods resolve their ARX order and Markov count on `fit`: time_domain/arx_order.hpp).
   void (*fit)(const Experiment& fit, const IdentifyOptions& options, Model& model) = nullptr;
-  // Leaves the samples where a controller clamp acted out of its regressions (every equation
-  // whose window holds one). A method that cannot is fitted on the longest stretch of the fit
+  // How it leaves the samples where a controller clamp acted out of its fit (model.json
+  // clamped_samples.fit). Empty: it cannot, and is fitted on the longest stretch of the fit
   // window without a clamp (identify_experiment.hpp).
-  bool leaves_out_clamped = false;
+  std::string leaves_out_clamped = {};
 };
 
 // Every method, in the order the help and the README list them.

@@ -111,7 +111,7 @@ class Problem {
     const std::optional<Eigen::Vector3d> squares = predictor_.squares(theta(p));
     if (!squares) return false;
     for (Index j = 0; j < 3; ++j) {
-      const double rms = std::sqrt((*squares)(j) / double(predictor_.samples()));
+      const double rms = std::sqrt((*squares)(j) / double(predictor_.scored_samples()));
       if (!(rms > 0.0)) throw InsufficientData(kPemWho + ": output " + std::to_string(j + 1) + " is predicted exactly");
       weight_(j) = 1.0 / rms;
     }
@@ -274,7 +274,10 @@ Amb1dofPredictionErrorFit refine(const pem::Amb1dofPredictor& predictor, const E
         throw InsufficientData(kPemWho + ": the data do not determine v" + std::to_string(i + 1) + " (one sigma " +
                                std::to_string(100.0 * relative) + " % of its value)");
     }
-    fit.residual_rms = (errors->colwise().squaredNorm().transpose() / double(predictor.samples())).cwiseSqrt();
+    const std::optional<Eigen::Vector3d> squares = predictor.squares(theta);  // the scored samples only
+    if (!squares) throw InsufficientData(kPemWho + ": the predictor diverges at the solution");
+    fit.residual_rms = (*squares / double(predictor.scored_samples())).cwiseSqrt();
+    fit.scored_samples = predictor.scored_samples();
 
     Eigen::Matrix4d A;
     Eigen::Matrix<double, 4, 3> B;
@@ -309,7 +312,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error(const Eigen::MatrixXd& y,
   const Eigen::Vector3d spread = checked_spread(y, u, r, sample_time, options);
   if (v_starts.empty()) throw Error(kPemWho + ": needs at least one starting v1..v9");
   for (const Vector9& v : v_starts) check_start(v);
-  const pem::Amb1dofPredictor predictor(y, u, sample_time);
+  const pem::Amb1dofPredictor predictor(y, u, sample_time, options.clamped);
 
   // The start whose predictor has the lowest cost goes on (the next one if it fails).
   std::vector<Parameters> starts;
@@ -335,7 +338,7 @@ Amb1dofPredictionErrorFit fit_amb1dof_prediction_error_from(const Eigen::MatrixX
   check_start(start.v);
   if (!start.offset.allFinite() || !start.predictor_gain.allFinite())
     throw Error(kPemWho + ": the warm start's offset or predictor gain is not finite");
-  const pem::Amb1dofPredictor predictor(y, u, sample_time);
+  const pem::Amb1dofPredictor predictor(y, u, sample_time, options.clamped);
   const Parameters theta = pem::pack(start.v, start.offset, first_state(y), start.predictor_gain);
   if (!predictor.squares(theta))
     throw InsufficientData(kPemWho + ": the predictor of the warm start diverges on this record");

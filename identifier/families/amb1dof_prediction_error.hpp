@@ -73,6 +73,10 @@ struct Amb1dofPredictionErrorOptions {
   Eigen::Index residual_lags = 20;
   double max_residual_z = 5.0;
   double max_residual_correlation = 0.2;
+  // Per sample, or empty: a controller clamp acted (the recorded u is not what the plant got);
+  // the prediction error whose prediction used that u is left out of the cost
+  // (amb1dof_predictor.hpp).
+  std::vector<bool> clamped;
 };
 
 struct Amb1dofPredictionErrorFit {
@@ -91,6 +95,7 @@ struct Amb1dofPredictionErrorFit {
   std::string termination;                     // why the solver stopped
   double start_cost = 0.0, final_cost = 0.0;   // weighted 0.5 sum e^2: at the start (its weights), at the end
   ResidualIndependence residual_check;         // of the prediction errors at the solution
+  Eigen::Index scored_samples = 0;             // whose prediction error is in the cost
 };
 
 // y: samples x 3 ([x, i1, i2] deviations), u: samples x 2 ([u1, u2] deviations, the recorded

@@ -1,5 +1,9 @@
 #include "identifier/families/amb1dof_predictor.hpp"
 
+#include <algorithm>
+#include <string>
+
+#include "core/error.hpp"
 #include "core/linalg.hpp"
 
 namespace ambid::ident::pem {
@@ -90,8 +94,17 @@ ZeroOrderHold zero_order_hold(const Parameters& theta, double sample_time, bool 
   return out;
 }
 
-Amb1dofPredictor::Amb1dofPredictor(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time)
-    : y_(y), u_(u), sample_time_(sample_time) {}
+Amb1dofPredictor::Amb1dofPredictor(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time,
+                                   std::vector<bool> clamped)
+    : y_(y), u_(u), sample_time_(sample_time), scored_samples_(y.rows()) {
+  if (clamped.empty()) return;
+  if (std::ssize(clamped) != y.rows())
+    throw Error("amb1dof predictor: the clamp mask has " + std::to_string(clamped.size()) + " entries for " +
+                std::to_string(y.rows()) + " samples");
+  skipped_.assign(clamped.size(), false);
+  for (std::size_t t = 1; t < clamped.size(); ++t) skipped_[t] = clamped[t - 1];
+  scored_samples_ -= std::count(skipped_.begin(), skipped_.end(), true);
+}
 
 template <typename Each>
 bool Amb1dofPredictor::predict(const Parameters& theta, Each&& each) const {
@@ -110,7 +123,8 @@ bool Amb1dofPredictor::predict(const Parameters& theta, Each&& each) const {
 
 std::optional<Eigen::Vector3d> Amb1dofPredictor::squares(const Parameters& theta) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  if (!predict(theta, [&](Index, const Eigen::Vector3d& e) { sum += e.cwiseAbs2(); }) || !sum.allFinite())
+  if (!predict(theta, [&](Index t, const Eigen::Vector3d& e) { if (scored(t)) sum += e.cwiseAbs2(); }) ||
+      !sum.allFinite())
     return std::nullopt;
   return sum;
 }
@@ -142,9 +156,10 @@ bool Amb1dofPredictor::linearise(const Parameters& theta, const Eigen::Vector3d&
   Index filled = 0;
   for (Index t = 0; t < samples(); ++t) {
     e << y_(t, 0) - x(0), y_(t, 1) - x(2), y_(t, 2) - x(3);
+    const double w = scored(t) ? 1.0 : 0.0;  // a row of zeros leaves the sample out
     for (int j = 0; j < 3; ++j) {
-      jacobian.row(3 * filled + j) = (-weight(j)) * psi.row(kMeasured[std::size_t(j)]).cwiseProduct(row_scale);
-      target(3 * filled + j) = -weight(j) * e(j);
+      jacobian.row(3 * filled + j) = (-w * weight(j)) * psi.row(kMeasured[std::size_t(j)]).cwiseProduct(row_scale);
+      target(3 * filled + j) = -w * weight(j) * e(j);
     }
     if (++filled == block || t + 1 == samples()) {
       if (!target.head(3 * filled).allFinite()) return false;

@@ -15,6 +15,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -49,12 +50,18 @@ ZeroOrderHold zero_order_hold(const Parameters& theta, double sample_time, bool 
 
 class Amb1dofPredictor {
  public:
-  // y: samples x 3 ([x, i1, i2]), u: samples x 2; both kept by reference.
-  Amb1dofPredictor(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time);
+  // y: samples x 3 ([x, i1, i2]), u: samples x 2; both kept by reference. `clamped` (per
+  // sample, or empty): the recorded u is not what the plant got there (a controller clamp
+  // acted); the prediction error of the next sample, whose prediction used it, is left out of
+  // the cost (the predictor still runs through it). Error when its size is not the samples'.
+  Amb1dofPredictor(const Eigen::MatrixXd& y, const Eigen::MatrixXd& u, double sample_time,
+                   std::vector<bool> clamped = {});
 
   Eigen::Index samples() const { return y_.rows(); }
+  // The samples whose prediction error is in the cost.
+  Eigen::Index scored_samples() const { return scored_samples_; }
 
-  // Sum over the record of each output's squared prediction error; nullopt when the predictor
+  // Sum over the scored samples of each output's squared prediction error; nullopt when the predictor
   // diverges (a non-finite error).
   std::optional<Eigen::Vector3d> squares(const Parameters& theta) const;
 
@@ -63,7 +70,8 @@ class Amb1dofPredictor {
 
   // Rows of the weighted, column-scaled Jacobian and their targets, `block` samples at a time
   // (the last block may be shorter), sample-major with the outputs in order:
-  //   jacobian(3 s + j, k) = weight_j scale_k d e_j[s] / d theta_k,   target(3 s + j) = -weight_j e_j[s].
+  //   jacobian(3 s + j, k) = weight_j scale_k d e_j[s] / d theta_k,   target(3 s + j) = -weight_j e_j[s],
+  // zero rows for a sample left out of the cost.
   // Returns false (after the blocks so far) when the predictor diverges.
   using Rows = std::function<void(const Eigen::Ref<const Eigen::MatrixXd>& jacobian,
                                   const Eigen::Ref<const Eigen::VectorXd>& target)>;
@@ -74,10 +82,13 @@ class Amb1dofPredictor {
   // Runs the predictor, giving each sample's error to `each(t, e)`; false when it diverges.
   template <typename Each>
   bool predict(const Parameters& theta, Each&& each) const;
+  bool scored(Eigen::Index t) const { return skipped_.empty() || !skipped_[std::size_t(t)]; }
 
   const Eigen::MatrixXd& y_;
   const Eigen::MatrixXd& u_;
   double sample_time_;
+  std::vector<bool> skipped_;  // per sample: its prediction used a clamped input; empty: none
+  Eigen::Index scored_samples_ = 0;
 };
 
 }  // namespace ambid::ident::pem

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "identifier/frequency_domain/frf_plan.hpp"
 #include "identifier/frequency_domain/rational_fit_order.hpp"
@@ -83,11 +85,18 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
   const Periodicity detected = detect_periodicity(r, o.periodicity);
   const std::optional<PeriodicPlan> periodic = plan_periodic(e, detected, d, o, report.notes, report.warnings);
 
+  const ControllerReplay clamps = clamped_samples(e);  // not exogenous: no block holding one is averaged
+  report.clamped_samples = clamps.clamped_samples;
+  const std::vector<bool> left_out = clamps.clamped_samples > 0 ? clamps.clamped : std::vector<bool>{};
+
   const Eigen::MatrixXd* coherence = nullptr;
   Eigen::MatrixXd welch_coherence;
   if (periodic) {
     const Eigen::Index used = periodic->end_sample;
-    const PeriodicFrf p = estimate_periodic_frf(r.topRows(used), u.topRows(used), y.topRows(used), periodic->options);
+    PeriodicFrfOptions po = periodic->options;
+    if (!left_out.empty()) po.left_out.assign(left_out.begin(), left_out.begin() + used);
+    const PeriodicFrf p = estimate_periodic_frf(r.topRows(used), u.topRows(used), y.topRows(used), po);
+    report.blocks_left_out = p.blocks_left_out;
     report.method = "periodic";
     report.periodic = periodic->summary;
     report.periodic->periods_used = p.periods_used;
@@ -97,7 +106,16 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.input_from_reference = p.input_from_reference;
     report.blocks = p.blocks;
     if (p.blocks < 2) report.notes.push_back("periodic analysis: one block only; no noise bounds");
-  } else if (const auto stepped = plan_stepped_sine(e, d, o, report.notes)) {
+  } else if (auto stepped = plan_stepped_sine(e, d, o, report.notes)) {
+    const auto holds_clamp = [&](const SteppedSineStep& s) {
+      if (left_out.empty() || s.measure_start < 0 || s.measure_start + s.measure_samples > std::ssize(left_out))
+        return false;  // estimate_stepped_sine_frf refuses a window outside the record
+      const auto first = left_out.begin() + s.measure_start;
+      return std::find(first, first + s.measure_samples, true) != first + s.measure_samples;
+    };
+    report.blocks_left_out = static_cast<Eigen::Index>(std::erase_if(stepped->steps, holds_clamp));
+    if (stepped->steps.empty())
+      throw InsufficientData("frf: a controller clamp acts in the measurement window of every stepped-sine step");
     const SteppedSineFrf p = estimate_stepped_sine_frf(r, u, y, *stepped);
     report.method = "stepped_sine";
     report.plant = p.plant;
@@ -116,7 +134,9 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     }
     w.f_min = o.f_min;
     w.f_max = o.f_max;
+    w.left_out = left_out;
     const WelchFrf p = estimate_welch_frf(r, u, y, w);
+    report.blocks_left_out = p.skipped_segments;
     report.method = "welch";
     report.plant = p.plant;
     report.plant_direct = p.plant_direct;
@@ -126,6 +146,14 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     welch_coherence = p.output_coherence;
     coherence = &welch_coherence;
   }
+  if (report.clamped_samples > 0)
+    report.notes.push_back(
+        std::to_string(report.clamped_samples) +
+        " samples with a controller clamp acting (not exogenous): " + std::to_string(report.blocks_left_out) +
+        (report.method == "periodic" ? " blocks of periods (holding one, or right after one)"
+         : report.method == "welch"  ? " Welch segments (holding one)"
+                                     : " stepped-sine steps (holding one in their window)") +
+        " left out");
   report.frequency_hz = report.plant.frequency_hz;
   fill_pairs(report, coherence, o.confidence);
 

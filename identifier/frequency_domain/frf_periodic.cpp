@@ -54,6 +54,9 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
                   std::to_string(o.lines[i - 1]));
   }
   if (o.first_sample < 0) throw Error("periodic FRF: first_sample must be >= 0, got " + std::to_string(o.first_sample));
+  if (!o.left_out.empty() && std::ssize(o.left_out) != r.rows())
+    throw Error("periodic FRF: the mask of left-out samples has " + std::to_string(o.left_out.size()) +
+                " entries for " + std::to_string(r.rows()) + " samples");
   if (o.transient_periods < 0)
     throw Error("periodic FRF: transient_periods must be >= 0, got " + std::to_string(o.transient_periods));
   // Fewer periods per block than references: only the local polynomial method separates the
@@ -74,21 +77,42 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
   const Eigen::Index N = o.period_samples, P = o.periods_per_block;
   const Eigen::Index available = (r.rows() - o.first_sample) / N;
   const Eigen::Index usable = available - o.transient_periods;
-  const Eigen::Index B = usable > 0 ? usable / P : 0;
+  Eigen::Index B = usable > 0 ? usable / P : 0;
   if (B < 1)
     throw InsufficientData("periodic FRF: " + std::to_string(available) + " whole periods of " + std::to_string(N) +
                            " samples, " + std::to_string(o.transient_periods) +
                            " discarded as transient, leave no block of " + std::to_string(P) + " periods");
   const Eigen::Index start = o.first_sample + o.transient_periods * N;
-  const auto Rp = period_phasors(r, start, N, B * P, o.lines);
-  const auto Up = period_phasors(u, start, N, B * P, o.lines);
-  const auto Yp = period_phasors(y, start, N, B * P, o.lines);
+  // The blocks kept: none that holds a left-out sample or follows one that does.
+  std::vector<Eigen::Index> kept;
+  bool after_left_out = false;
+  for (Eigen::Index b = 0; b < B; ++b) {
+    const auto first = start + b * P * N;
+    const bool holds = !o.left_out.empty() && std::find(o.left_out.begin() + first, o.left_out.begin() + first + P * N,
+                                                        true) != o.left_out.begin() + first + P * N;
+    if (!holds && !after_left_out) kept.push_back(b);
+    after_left_out = holds;
+  }
+  if (kept.empty())
+    throw InsufficientData("periodic FRF: every one of the " + std::to_string(B) + " blocks of " + std::to_string(P) +
+                           " periods holds a sample where a controller clamp acted, or follows one");
+  auto phasors = [&](const Eigen::MatrixXd& x) {
+    const auto all = period_phasors(x, start, N, B * P, o.lines);
+    std::vector<Eigen::MatrixXcd> out;
+    for (const Eigen::Index b : kept)
+      for (Eigen::Index q = 0; q < P; ++q) out.push_back(all[static_cast<std::size_t>(b * P + q)]);
+    return out;
+  };
+  const auto Rp = phasors(r), Up = phasors(u), Yp = phasors(y);
+  const Eigen::Index blocks_left_out = B - static_cast<Eigen::Index>(kept.size());
+  B = static_cast<Eigen::Index>(kept.size());
 
   const Eigen::Index nl = static_cast<Eigen::Index>(o.lines.size());
   const Eigen::Index ny = y.cols(), nu = u.cols(), nr = r.cols();
   PeriodicFrf out;
   out.blocks = B;
   out.periods_used = B * P;
+  out.blocks_left_out = blocks_left_out;
   Eigen::VectorXd f(nl);
   for (Eigen::Index l = 0; l < nl; ++l)
     f(l) = static_cast<double>(o.lines[static_cast<std::size_t>(l)]) / (static_cast<double>(N) * o.sample_time);
@@ -161,6 +185,7 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
   }
 
   const double b_count = static_cast<double>(B);
+  const bool from_means = o.plant_from_period_means && lpm && P == 1;
   for (Eigen::Index l = 0; l < nl; ++l) {
     const auto li = static_cast<std::size_t>(l);
     const Eigen::Index k = o.lines[li];
@@ -234,13 +259,38 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
       out.input_noise_variance.row(l) = (vu / positions).transpose();
     }
   }
-  if (o.plant_from_period_means && lpm && P == 1) {
+  if (from_means) {
     Eigen::MatrixXcd U_mean = Eigen::MatrixXcd::Zero(nl, nu), Y_mean = Eigen::MatrixXcd::Zero(nl, ny);
     for (Eigen::Index b = 0; b < B; ++b) {
       U_mean += Up[static_cast<std::size_t>(b)];
       Y_mean += Yp[static_cast<std::size_t>(b)];
     }
-    out.plant.value = local_polynomial_frf({U_mean / b_count}, {Y_mean / b_count}, o.lines, o.local_polynomial);
+    U_mean /= b_count;
+    Y_mean /= b_count;
+    out.plant.value = local_polynomial_frf({U_mean}, {Y_mean}, o.lines, o.local_polynomial);
+    if (with_variance) {
+      // The same local model of each period alone, on the mean inputs, with that period's
+      // noise moved to the outputs to first order: Y_b - G (U_b - U_mean), whose mean over the
+      // periods is Y_mean. The scatter of these fits over B is the variance of the estimate.
+      std::vector<std::vector<Eigen::MatrixXcd>> Gb;
+      for (Eigen::Index b = 0; b < B; ++b) {
+        const auto bi = static_cast<std::size_t>(b);
+        Eigen::MatrixXcd Yb = Yp[bi];
+        for (Eigen::Index l = 0; l < nl; ++l)
+          Yb.row(l) -=
+              (out.plant.value[static_cast<std::size_t>(l)] * (Up[bi].row(l) - U_mean.row(l)).transpose()).transpose();
+        Gb.push_back(local_polynomial_frf({U_mean}, {Yb}, o.lines, o.local_polynomial));
+      }
+      for (Eigen::Index l = 0; l < nl; ++l) {
+        const auto li = static_cast<std::size_t>(l);
+        Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(ny, nu);
+        for (const auto& g : Gb) mean += g[li];
+        mean /= b_count;
+        std::vector<Eigen::MatrixXcd> deviations;
+        for (const auto& g : Gb) deviations.push_back(g[li] - mean);
+        out.plant.variance[li] = spread(deviations, b_count * (b_count - 1.0));
+      }
+    }
   }
   return out;
 }

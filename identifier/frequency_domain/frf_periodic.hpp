@@ -13,7 +13,8 @@
 // input-output) estimate, unbiased under feedback:
 //   G = T_yr T_ur^+   (= S_yr S_ur^-1; needs references >= inputs and T_ur of full rank).
 // Its variance is the sample variance over blocks of the linearised error
-// (T_yr,b - G T_ur,b) T_ur^+, divided by the number of blocks (variance of the average).
+// (T_yr,b - G T_ur,b) T_ur^+, divided by the number of blocks (variance of the average)
+// (plant_from_period_means: of the per-period local model, below).
 // The direct estimate G_dir = sum Y U^H (sum U U^H)^-1 over all periods treats u as if it were
 // independent of the noise; under feedback with noise it is biased (towards 1/K).
 //
@@ -52,9 +53,15 @@ struct PeriodicFrfOptions {
   LocalPolynomialOptions local_polynomial;
   // With the local model and P = 1: the plant from a local model of the period-mean outputs on
   // the period-mean inputs (G is interpolated across lines instead of T_yr and T_ur, whose
-  // ratio is ill-conditioned where the loop suppresses an input direction). The variance stays
-  // that of the indirect estimate.
+  // ratio is ill-conditioned where the loop suppresses an input direction). Its variance is
+  // the period-to-period scatter, over the number of periods (2 (periods - 1) degrees of
+  // freedom), of the same local model fitted to each period alone on the mean inputs, with the
+  // period's input noise moved to its outputs to first order: Y_p - G (U_p - U_mean).
   bool plant_from_period_means = false;
+  // Per sample (rows of r, u, y): not exogenous (a controller clamp acted there). A block
+  // holding one is left out, and so is the block after it (the loop's free response to the
+  // clamp would leak into every line there). Empty: none.
+  std::vector<bool> left_out;
 };
 
 struct PeriodicFrf {
@@ -67,12 +74,14 @@ struct PeriodicFrf {
   Eigen::MatrixXd output_noise_variance, input_noise_variance;
   Eigen::Index blocks = 0;
   Eigen::Index periods_used = 0;
+  Eigen::Index blocks_left_out = 0;  // after the transient: holding a left-out sample, or right after one
 };
 
 // r, u, y: samples x signals, deviations. Throws Error for inconsistent sizes or options (a
 // line outside (0, N/2) or repeated, P < references without the local polynomial
 // transient model, non-positive sample time), and
-// InsufficientData when fewer than one block remains after the transient, or when at some line
+// InsufficientData when fewer than one block remains after the transient (and the blocks left
+// out), or when at some line
 // the references of a block are not of full rank or T_ur is singular (names the line).
 PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eigen::MatrixXd& y,
                                   const PeriodicFrfOptions& options);

@@ -35,6 +35,9 @@ void check_options(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, const Eig
     throw Error("Welch FRF: overlap must be in [0, 1), got " + std::to_string(o.overlap));
   if (o.first_sample < 0) throw Error("Welch FRF: first_sample must be >= 0, got " + std::to_string(o.first_sample));
   if (!(o.f_min >= 0.0) || !(o.f_max >= 0.0)) throw Error("Welch FRF: f_min and f_max must be >= 0");
+  if (!o.left_out.empty() && std::ssize(o.left_out) != r.rows())
+    throw Error("Welch FRF: the mask of left-out samples has " + std::to_string(o.left_out.size()) + " entries for " +
+                std::to_string(r.rows()) + " samples");
 }
 
 }  // namespace
@@ -46,11 +49,24 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
   const Eigen::Index hop =
       std::max<Eigen::Index>(1, static_cast<Eigen::Index>(std::llround(static_cast<double>(L) * (1.0 - o.overlap))));
   const Eigen::Index available = r.rows() - o.first_sample;
-  const Eigen::Index M = available >= L ? 1 + (available - L) / hop : 0;
+  const Eigen::Index candidates = available >= L ? 1 + (available - L) / hop : 0;
   const Eigen::Index nr = r.cols(), nu = u.cols(), ny = y.cols(), nz = nr + nu + ny;
+  // Segment starts, without those whose samples hold one left out.
+  std::vector<Eigen::Index> starts;
+  for (Eigen::Index m = 0; m < candidates; ++m) {
+    const Eigen::Index start = o.first_sample + m * hop;
+    if (o.left_out.empty() ||
+        std::find(o.left_out.begin() + start, o.left_out.begin() + start + L, true) == o.left_out.begin() + start + L)
+      starts.push_back(start);
+  }
+  const auto M = static_cast<Eigen::Index>(starts.size());
   if (M < nr + 1)
-    throw InsufficientData("Welch FRF: " + std::to_string(available) + " samples give " + std::to_string(M) +
-                           " segments of " + std::to_string(L) + "; need at least " + std::to_string(nr + 1));
+    throw InsufficientData("Welch FRF: " + std::to_string(available) + " samples give " + std::to_string(candidates) +
+                           " segments of " + std::to_string(L) +
+                           (candidates > M ? " (" + std::to_string(candidates - M) +
+                                                 " of them hold a sample left out, a controller clamp acting)"
+                                           : std::string()) +
+                           "; need at least " + std::to_string(nr + 1));
 
   // Lines kept.
   const double df = 1.0 / (static_cast<double>(L) * o.sample_time);
@@ -68,12 +84,15 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
   for (Eigen::Index n = 0; n < L; ++n)
     w(n) = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * static_cast<double>(n) / static_cast<double>(L));
   const double w2 = w.squaredNorm();
-  double ratio = 1.0;  // variance of the average relative to independent segments
-  for (Eigen::Index k = 1; k < M && k * hop < L; ++k) {
-    const Eigen::Index s = k * hop;
-    const double rho = w.head(L - s).dot(w.tail(L - s)) / w2;
-    ratio += 2.0 * (1.0 - static_cast<double>(k) / static_cast<double>(M)) * rho * rho;
-  }
+  // Variance of the average relative to independent segments: 1 + (2 / M) sum over pairs of
+  // kept segments that overlap of rho(shift)^2.
+  double ratio = 1.0;
+  for (std::size_t a = 0; a < starts.size(); ++a)
+    for (std::size_t b = a + 1; b < starts.size() && starts[b] - starts[a] < L; ++b) {
+      const Eigen::Index s = starts[b] - starts[a];
+      const double rho = w.head(L - s).dot(w.tail(L - s)) / w2;
+      ratio += 2.0 / static_cast<double>(M) * rho * rho;
+    }
 
   Eigen::MatrixXd Z(r.rows(), nz);
   Z << r, u, y;
@@ -82,8 +101,7 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
   std::vector<double> segment(static_cast<std::size_t>(L));
   std::vector<std::complex<double>> spectrum;
   Eigen::MatrixXcd F(nb, nz);
-  for (Eigen::Index m = 0; m < M; ++m) {
-    const Eigen::Index start = o.first_sample + m * hop;
+  for (const Eigen::Index start : starts) {
     for (Eigen::Index c = 0; c < nz; ++c) {
       for (Eigen::Index n = 0; n < L; ++n) segment[static_cast<std::size_t>(n)] = w(n) * Z(start + n, c);
       fft.fwd(spectrum, segment);
@@ -96,6 +114,7 @@ WelchFrf estimate_welch_frf(const Eigen::MatrixXd& r, const Eigen::MatrixXd& u, 
 
   WelchFrf out;
   out.segments = M;
+  out.skipped_segments = candidates - M;
   out.effective_segments = static_cast<double>(M) / ratio;
   Eigen::VectorXd f(nb);
   for (Eigen::Index b = 0; b < nb; ++b) f(b) = static_cast<double>(bins[static_cast<std::size_t>(b)]) * df;

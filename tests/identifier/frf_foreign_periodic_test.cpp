@@ -11,7 +11,9 @@
 #include <cmath>
 #include <complex>
 #include <cstdint>
+#include <iostream>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +30,8 @@ namespace {
 
 using test::kPi;
 constexpr double kT = 1e-4;
+// Records (multisine phases and noise) of the coverage test.
+constexpr std::uint64_t kCoverageSeeds[] = {23, 24, 25};
 
 // Random-phase multisine, rms `level` per channel, `samples` long (need not end on a whole
 // period): channel c gets the lines lines[c] of the N-sample grid.
@@ -82,13 +86,14 @@ Eigen::MatrixXd random_binary(Eigen::Index samples, int hold, double amplitude, 
 }
 
 // plant_sim's bearing and controller with our r; the sidecar keeps no excitation description.
-Experiment run_bearing(const Eigen::MatrixXd& r, double position_noise = 0.0, double current_noise = 0.0) {
+Experiment run_bearing(const Eigen::MatrixXd& r, double position_noise = 0.0, double current_noise = 0.0,
+                       std::uint64_t noise_seed = 11) {
   sim::ScenarioOptions s;
   s.duration = static_cast<double>(r.rows()) * kT;
   s.sample_time = kT;
   s.position_noise = position_noise;
   s.current_noise = current_noise;
-  s.seed = 11;
+  s.seed = noise_seed;
   sim::Scenario scenario = sim::build_scenario(s);
   scenario.options.excitation = r;
   scenario.header.extra.json().erase("excitation");
@@ -211,33 +216,46 @@ TEST(FrfForeignPeriodic, RepeatedMaximumLengthPrbsIsDetectedAndGivesTheLinearPla
 }
 
 TEST(FrfForeignPeriodic, NoisyBoundsCoverTheTruthAtTheirConfidence) {
-  // 0.1 um on x, 1 mA on each current.
-  const Experiment e = run_bearing(foreign_multisine(2000, zippered_lines(), 40000, 0.05, 23), 1e-7, 1e-3);
-  FrfAnalysisOptions o;
-  o.fit = false;
-  const FrfReport report = analyse_frf(e, o);
-  ASSERT_EQ(report.method, "periodic");
-  ASSERT_EQ(report.periodic->periods_used, 19);
-  // Every element of every line: |G - G0| <= bound at 95 %. With n values a calibrated bound
-  // leaves about 5 % out; 90 % is about four binomial standard deviations below 95 % for the
-  // 1200 values here (they are not independent across the elements of one line), and more
-  // than 99.5 % inside would mean bounds far too wide.
+  // 0.1 um on x, 1 mA on each current; kCoverageSeeds records of 20 periods (19 used).
+  // Every element of every line: |G - G0| <= bound at 95 %, the bound from the period-to-period
+  // scatter of the estimator used (the local rational model of each period) on 2 (19 - 1)
+  // degrees of freedom (an F(2, 36) quantile). A calibrated bound leaves 5 % out. The values
+  // are not independent (the elements of a line share its periods' noise, neighbouring lines
+  // share the local model's window), so the accepted band is 92-98 %. Measured: 97.97 % over
+  // the three records (|G - G0|^2 / variance averages 0.8 against the 1.06 of a calibrated
+  // bound: still a little wide, 4-fold below 50 Hz); with the variance of the indirect
+  // estimate T_yr T_ur^-1, which the local rational model of the period means is not, it
+  // covered 98.5 % of one record and the test accepted up to 99.5 %.
   int inside = 0, total = 0;
-  for (const PlantPair& pair : report.pairs) {
-    ASSERT_EQ(pair.bound.size(), report.frequency_hz.size());
-    const Eigen::Index i = pair.output == "x" ? 0 : pair.output == "i1" ? 1 : 2;
-    const Eigen::Index j = pair.input == "u1" ? 0 : 1;
-    for (Eigen::Index l = 0; l < report.frequency_hz.size(); ++l) {
-      const std::complex<double> truth = linear_bearing(report.frequency_hz(l))(i, j);
-      inside += std::abs(pair.value(l) - truth) <= pair.bound(l) ? 1 : 0;
-      ++total;
+  for (const std::uint64_t seed : kCoverageSeeds) {
+    const Experiment e = run_bearing(foreign_multisine(2000, zippered_lines(), 40000, 0.05, seed), 1e-7, 1e-3, seed);
+    FrfAnalysisOptions o;
+    o.fit = false;
+    const FrfReport report = analyse_frf(e, o);
+    ASSERT_EQ(report.method, "periodic");
+    ASSERT_EQ(report.periodic->periods_used, 19);
+    int seed_inside = 0, seed_total = 0;
+    for (const PlantPair& pair : report.pairs) {
+      ASSERT_EQ(pair.bound.size(), report.frequency_hz.size());
+      const Eigen::Index i = pair.output == "x" ? 0 : pair.output == "i1" ? 1 : 2;
+      const Eigen::Index j = pair.input == "u1" ? 0 : 1;
+      for (Eigen::Index l = 0; l < report.frequency_hz.size(); ++l) {
+        const std::complex<double> truth = linear_bearing(report.frequency_hz(l))(i, j);
+        seed_inside += std::abs(pair.value(l) - truth) <= pair.bound(l) ? 1 : 0;
+        ++seed_total;
+      }
     }
+    EXPECT_EQ(seed_total, 1200);
+    RecordProperty("noisy_coverage_95_seed_" + std::to_string(seed),
+                   test::scientific(double(seed_inside) / double(seed_total)));
+    inside += seed_inside;
+    total += seed_total;
   }
   const double coverage = double(inside) / double(total);
   RecordProperty("noisy_coverage_95", test::scientific(coverage));
-  EXPECT_EQ(total, 1200);
-  EXPECT_GT(coverage, 0.90);
-  EXPECT_LT(coverage, 0.995);
+  std::cout << "coverage of the 95 % bounds: " << coverage << " of " << total << " values\n";
+  EXPECT_GT(coverage, 0.92);
+  EXPECT_LT(coverage, 0.98);
 }
 
 TEST(FrfForeignPeriodic, RandomPrbsThatNeverRepeatsStaysWelch) {
@@ -301,6 +319,49 @@ TEST(FrfForeignPeriodic, OneReferenceIsAnalysedAtItsExactLines) {
   }
   RecordProperty("rotor_exact_lines_worst_relative_error", test::scientific(worst));
   EXPECT_LT(worst, 1e-8);  // steady state after the discarded period: exact to round-off
+}
+
+// A sample where a controller clamp acted is not exogenous: the periodic analysis leaves out
+// the period that holds it and the next one (the loop's response to the clamp). The rotor
+// record with a clamp [-hi, hi] on u that no recorded sample reaches, except one in the fifth
+// recorded period (the fourth used) whose recorded u we put beyond it: the two periods are
+// left out and the other five give the exact plant; without the limit the wrong u spoils the
+// estimate.
+TEST(FrfForeignPeriodic, PeriodsHoldingAClampedSampleAreLeftOut) {
+  Experiment e = rotor_record();
+  const double hi = 1.5 * e.u.cwiseAbs().maxCoeff();
+  const Eigen::Index clamped = 300 + 4 * 500 + 123;  // in the fifth whole period
+  e.u(clamped, 0) = 2.0 * hi;
+  FrfAnalysisOptions o;
+  o.fit = false;
+  auto worst_error = [&](const FrfReport& report) {
+    double worst = 0.0;
+    for (Eigen::Index l = 0; l < report.frequency_hz.size(); ++l) {
+      const std::complex<double> z =
+          std::exp(std::complex<double>(0.0, 2.0 * kPi * report.frequency_hz(l) * e.sample_time));
+      worst = std::max(worst, std::abs(report.plant.value[static_cast<std::size_t>(l)](0, 0) /
+                                           test::sales_rotor_zoh(z, e.sample_time) -
+                                       1.0));
+    }
+    return worst;
+  };
+  const FrfReport unmarked = analyse_frf(e, o);
+  EXPECT_EQ(unmarked.clamped_samples, 0);
+  EXPECT_EQ(unmarked.periodic->periods_used, 7);
+  e.controller->output_limits = {Limit{-hi, hi}};
+  const FrfReport report = analyse_frf(e, o);
+  ASSERT_EQ(report.method, "periodic");
+  EXPECT_EQ(report.clamped_samples, 1);
+  EXPECT_EQ(report.blocks_left_out, 2);
+  EXPECT_EQ(report.periodic->periods_used, 5);
+  EXPECT_TRUE(std::any_of(report.notes.begin(), report.notes.end(), [](const std::string& n) {
+    return n.find("1 samples with a controller clamp acting (not exogenous): 2 blocks of periods") != std::string::npos;
+  }));
+  const double left_out = worst_error(report), kept = worst_error(unmarked);
+  RecordProperty("clamped_period_left_out_worst_relative_error", test::scientific(left_out));
+  RecordProperty("clamped_period_kept_worst_relative_error", test::scientific(kept));
+  EXPECT_LT(left_out, 1e-8);
+  EXPECT_GT(kept, 1e-3);
 }
 
 TEST(FrfForeignPeriodic, ADescriptionThatRContradictsIsIgnoredWithAWarning) {

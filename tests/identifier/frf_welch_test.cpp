@@ -73,6 +73,48 @@ TEST(FrfWelch, NoiseFreeRandomExcitation) {
   EXPECT_GE(within, static_cast<int>(0.95 * static_cast<double>(e.plant.lines())));
 }
 
+// Samples where a controller clamp acted are not exogenous: every segment holding one is
+// skipped, so whatever the record holds there leaves the estimate as it is without those
+// segments. 1000 samples of y from 30500 on are replaced by garbage and masked: with 2000-sample
+// segments at hop 1000 the segments starting at 29000, 30000 and 31000 hold them (3 of 81).
+TEST(FrfWelch, SegmentsHoldingALeftOutSampleAreSkipped) {
+  const Loop loop;
+  const Eigen::MatrixXd r = gaussian(2000 * 41, 1.0, 3);
+  const test::LoopData d = test::simulate_loop(loop.plant, loop.controller, test::sales_signals(), r);
+  WelchFrfOptions o;
+  o.sample_time = kT;
+  o.segment_samples = 2000;
+  o.f_max = 1000.0;
+  o.left_out.assign(std::size_t(r.rows()), false);
+  std::fill(o.left_out.begin() + 30500, o.left_out.begin() + 31500, true);
+  Eigen::MatrixXd y_bad = d.y;
+  y_bad.middleRows(30500, 1000) = gaussian(1000, 50.0 * d.y.cwiseAbs().maxCoeff(), 9);
+  const WelchFrf clean = estimate_welch_frf(r, d.u, d.y, o);
+  const WelchFrf masked = estimate_welch_frf(r, d.u, y_bad, o);
+  EXPECT_EQ(masked.segments, 78);
+  EXPECT_EQ(masked.skipped_segments, 3);
+  // The kept segments: 0..28 and 32..80 (29 and 49 consecutive ones): 1 + (2/78) (28 + 48) rho^2.
+  EXPECT_NEAR(masked.effective_segments, 78.0 / (1.0 + 2.0 / 78.0 * 76.0 / 36.0), 1e-9);
+  double worst_change = 0.0, worst_unmasked = 0.0;
+  WelchFrfOptions unmasked_options = o;
+  unmasked_options.left_out.clear();
+  const WelchFrf unmasked = estimate_welch_frf(r, d.u, y_bad, unmasked_options);
+  for (Eigen::Index l = 0; l < masked.plant.lines(); ++l) {
+    const auto li = static_cast<std::size_t>(l);
+    worst_change = std::max(worst_change, std::abs(masked.plant.value[li](0, 0) / clean.plant.value[li](0, 0) - 1.0));
+    worst_unmasked =
+        std::max(worst_unmasked, std::abs(unmasked.plant.value[li](0, 0) / clean.plant.value[li](0, 0) - 1.0));
+  }
+  RecordProperty("garbage_unmasked_worst_relative_change", test::scientific(worst_unmasked));
+  EXPECT_LT(worst_change, 1e-12);  // the garbage is in no averaged segment
+  EXPECT_GT(worst_unmasked, 0.1);  // and would matter if it were
+
+  o.left_out.assign(std::size_t(r.rows()), true);
+  EXPECT_THROW(estimate_welch_frf(r, d.u, d.y, o), InsufficientData);
+  o.left_out.resize(10);
+  EXPECT_THROW(estimate_welch_frf(r, d.u, d.y, o), Error);
+}
+
 TEST(FrfWelch, DirectEstimateIsBiasedUnderFeedbackWithNoise) {
   const Loop loop;
   const double sr = 1.0, sv = 0.03;
