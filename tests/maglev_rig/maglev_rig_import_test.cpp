@@ -21,7 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 Model greybox(const Experiment& e) {
   ident::IdentifyOptions o;
   o.method = "greybox";
@@ -39,8 +38,8 @@ void expect_same_identification(const Model& imported, const Model& direct) {
 class MaglevRigImport : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::temp_directory_path() /
-                        ("ambid-maglev-rig-import-" + std::to_string(std::random_device{}())));
+    dir_ =
+        new fs::path(fs::temp_directory_path() / ("ambid-maglev-rig-import-" + std::to_string(std::random_device{}())));
     fs::create_directories(*dir_);
     write_experiment(test_support::maglev_record(sim::MaglevParameters::nominal(), sim::MaglevRig{},
                                                  test_support::maglev_run_options(1.5e-3, 3000, 5)),
@@ -90,11 +89,8 @@ TEST_F(MaglevRigImport, ColumnVectorsWithTimeGiveTheSameIdentification) {
   const Experiment& e = *record_;
   const fs::path file = scratch("vectors.mat");
   const Eigen::VectorXd ref = Eigen::VectorXd::Constant(e.samples(), 14.0);  // the file's ref: not used
-  test::write_mat(file, {{"t", e.t},
-                         {"ref", ref},
-                         {"y", e.y.col(0) * 1e3},
-                         {"u", e.u.col(0)},
-                         {"i", e.y.col(1) * 1e3}});
+  test::write_mat(file,
+                  {{"t", e.t}, {"ref", ref}, {"y", e.y.col(0) * 1e3}, {"u", e.u.col(0)}, {"i", e.y.col(1) * 1e3}});
   ImportMapping mapping;
   mapping.t = parse_signal_source("t", "t:s");
   mapping.y = {parse_signal_mapping("x=y:mm"), parse_signal_mapping("i=i:mA")};
