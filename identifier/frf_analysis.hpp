@@ -11,7 +11,9 @@
 // - with a recorded controller: the input sensitivity measured from r -> u, its peak per plant
 //   input and of sigma_max with the ISO 14839-3 zone, and the seed 003 eq. 5 controller check;
 // - a continuous rational fit of every pair below fit_f_max (order by validation misfit, ZOH
-//   compensated, noise weighted when variances exist): poles, zeros, gain.
+//   compensated, noise weighted when variances exist): poles, zeros, gain;
+// - where the plant family has a linear structure, that structure fitted to the plant FRF and
+//   what it derives (the maglev's unstable pole), with one-sigma uncertainties.
 // Steps that cannot run say why in `notes` instead of failing the whole analysis.
 #include <optional>
 #include <string>
@@ -22,6 +24,7 @@
 #include "core/experiment.hpp"
 #include "identifier/frequency_domain/frf_open_loop.hpp"
 #include "identifier/frequency_domain/frf_periodicity.hpp"
+#include "identifier/frequency_domain/frf_structured.hpp"
 #include "identifier/frequency_domain/rational_fit.hpp"
 #include "identifier/frequency_domain/sensitivity_function.hpp"
 #include "identifier/frf_types.hpp"
@@ -81,6 +84,9 @@ struct FrfReport {
   std::vector<SensitivityPeak> sensitivity_peaks;  // one per plant input, then "sigma_max"
   std::optional<ControllerCheck> controller_check;
   std::vector<FittedPair> fits;
+  // The family's physical structure fitted to the plant FRF (plant_families.hpp
+  // `frf_structure`; the maglev's unstable pole with its sigma); empty for a family without.
+  std::optional<StructuredFrfFit> structured;
   std::optional<PeriodicExcitation> periodic;  // method "periodic": what was detected and used
   // Samples where a controller clamp acted (controller.output_limits, state_limits): not
   // exogenous, so no block (periodic: period, and the one after it; Welch: segment) holding

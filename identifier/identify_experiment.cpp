@@ -481,8 +481,12 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   Experiment fit = experiment_segment(e, o.skip_samples, e.samples() - validation);
   const Index fit_clamped = count_clamped(fit);
   std::string clamp_handling = "none in the fit window";
+  const IdentificationFamily* family = find_identification_family(e.plant.model);
+  const bool keeps_clamped = method.family_bound && family && family->keeps_clamped;
   if (fit_clamped > 0 && !method.leaves_out_clamped.empty()) {
     clamp_handling = method.leaves_out_clamped;
+  } else if (fit_clamped > 0 && keeps_clamped) {
+    clamp_handling = "kept: method '" + o.method + "' fits the plant's own equations on the u the plant got";
   } else if (fit_clamped > 0) {
     const auto [begin, end] = longest_unclamped_stretch(fit);
     if (end - begin < 2)
@@ -504,7 +508,11 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   try {
     method.fit(fit, resolved, model);
   } catch (const InsufficientData& error) {
+<<<<<<< HEAD
     if (fit_clamped == 0 || !method.leaves_out_clamped.empty()) throw;
+=======
+    if (fit_clamped == 0 || method.leaves_out_clamped || keeps_clamped) throw;
+>>>>>>> maglev-e2e
     throw InsufficientData(std::string(error.what()) + " (" + clamp_handling + ")");
   }
   model.discrete.sample_time = e.sample_time;

@@ -16,7 +16,8 @@
 // core/controller_replay.hpp) are not exogenous: the ARX methods (okid, closed-loop,
 // projection) leave every equation whose window holds one out of their regressions, the others
 // (which run a predictor or a realisation over contiguous samples) are fitted on the longest
-// stretch of the fit window without one, and fit.nrmse does not score them. model.json says
+// stretch of the fit window without one (a family whose methods fit the plant's own equations,
+// plant_families.hpp `keeps_clamped`, keeps them all), and fit.nrmse does not score them. model.json says
 // how many there were and what was done (extra "clamped_samples", and a warning).
 // Nothing here stabilises an identified model: an unstable plant comes out unstable.
 // When an ERA realisation has no continuous-time equivalent (d2c_zoh refuses a discrete

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "identifier/families/amb1dof_realization.hpp"
+#include "identifier/families/maglev_frf_structure.hpp"
 #include "identifier/families/maglev_identification.hpp"
 
 namespace ambid::ident {
@@ -16,7 +17,15 @@ const std::vector<IdentificationFamily>& identification_families() {
        add_amb1dof_structure,
        nullptr,
        {"deadbeat", "deadbeat-iv", "pem", "rpem"}},
-      {"maglev1coil_voltage", {"x", "i"}, {"u"}, 3, nullptr, fit_maglev_greybox_model, {"greybox"}},
+      {"maglev1coil_voltage",
+       {"x", "i"},
+       {"u"},
+       3,
+       nullptr,
+       fit_maglev_greybox_model,
+       {"greybox"},
+       true,
+       maglev_frf_structure},
       // Seed 002's 10 states (5 positions, 5 rates); realisation coordinates only.
       {"lamstf", {"s1", "s2", "s3", "s4", "s5"}, {"i1", "i2", "i3", "i4", "i5"}, 10, nullptr, nullptr, {}},
   };

@@ -17,6 +17,7 @@
 namespace ambid::ident {
 
 struct IdentifyOptions;
+struct FrfStructure;
 
 struct IdentificationFamily {
   std::string name;
@@ -28,6 +29,13 @@ struct IdentificationFamily {
   // The family's grey-box fit of its physical parameters (method greybox); null: none.
   void (*greybox)(const Experiment& experiment, const IdentifyOptions& options, Model& model) = nullptr;
   std::vector<std::string> methods;  // the family-bound methods it offers
+  // Its family-bound methods fit the plant's own equations on the u the plant got (no
+  // controller, no r): a sample where a controller clamp acted is no less valid there, so they
+  // keep every sample (identify_experiment.hpp) instead of the longest stretch without a clamp.
+  bool keeps_clamped = false;
+  // Its linear structure for the structured fit of `ambid frf` (frequency_domain/
+  // frf_structured.hpp: the parameters and the unstable pole with sigmas); null: none.
+  const FrfStructure& (*frf_structure)() = nullptr;
 };
 
 const std::vector<IdentificationFamily>& identification_families();

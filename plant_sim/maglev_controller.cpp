@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 
 namespace ambid::sim {
@@ -22,6 +25,24 @@ StateSpaceController maglev_rig_controller(const MaglevRig& rig, double sample_t
   c.D = Eigen::MatrixXd::Constant(1, 1, (rig.Kp + q + kd) * mm_per_m);
   c.output_limits = {Limit{0.0, rig.v_ref}};
   return c;
+}
+
+void attach_rig_controller(Experiment& record, const MaglevRig& rig) {
+  if (record.y_names != std::vector<std::string>{"x", "i"} || record.u_names != std::vector<std::string>{"u"} ||
+      !record.operating_point.count("x"))
+    throw Error("maglev rig controller: the record needs y = [x, i], u = [u] and operating_point.x");
+  record.controller = maglev_rig_controller(rig, record.sample_time);
+  record.r_names.clear();
+  record.r.resize(record.samples(), 0);
+  const ControllerReplay replay = replay_controller(record);
+  record.r_names = {"r"};
+  record.r = record.u_deviation() - replay.output;  // operating value of r: 0
+  nlohmann::json& extra = record.extra.json();
+  extra["rig"]["not_in_controller"] = {
+      "the integral's clamp [integral_min, integral_max] and the PID's clamp [pid_min, pid_max]: a sample where "
+      "one acted is not exogenous and the form cannot see it",
+      "the reference levels: their proportional, derivative and integral parts of the command are in r",
+      "the excitation w added to the command: in r"};
 }
 
 }  // namespace ambid::sim

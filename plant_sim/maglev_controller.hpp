@@ -18,4 +18,12 @@ namespace ambid::sim {
 // Error for a non-positive sample time or bad rig settings (MaglevRig::validate).
 StateSpaceController maglev_rig_controller(const MaglevRig& rig, double sample_time);
 
+// Gives a rig record (y = [x, i], u = [u], its operating point set) the board's PID in the
+// contract's form and the reference input r = u - the form's output replayed on the logged x and
+// u (deviations), as `ambid import --reconstruct-r` does: r carries w and the reference's part
+// of the command. What the form does not contain is listed under the sidecar's
+// `rig.not_in_controller` (the integral's and the PID's clamps, the reference, w). Error for a
+// record of other signals or without an operating point x.
+void attach_rig_controller(Experiment& record, const MaglevRig& rig);
+
 }  // namespace ambid::sim

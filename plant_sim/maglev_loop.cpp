@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "plant_sim/integrator.hpp"
 #include "plant_sim/maglev1coil_voltage.hpp"
+#include "plant_sim/maglev_controller.hpp"
 
 namespace ambid::sim {
 namespace {
@@ -138,6 +139,7 @@ MaglevRun run_maglev_rig(const MaglevParameters& truth, const MaglevParameters& 
                          {"noise", {{"x", o.position_noise}, {"i", o.current_noise}, {"Fz", o.force_noise}}},
                          {"clamped_samples", run.clamped_samples}};
   if (!run.ended.empty()) extra["simulation"]["ended"] = run.ended;
+  attach_rig_controller(e, rig);
   return run;
 }
 

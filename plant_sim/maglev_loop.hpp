@@ -5,9 +5,11 @@
 // The true plant is integrated by RK4 with `substeps` steps per sample (u held by the DAC).
 //
 // The record it returns is an experiment of plant model maglev1coil_voltage with signals
-// y = [x, i] and u = [u] (the command as logged), no r (w is not logged) and no controller
-// (the contract's controller form has no reference input; the PID settings, the reference
-// schedule and the truth are kept under the sidecar's `rig` and `simulation` keys). Its
+// y = [x, i] and u = [u] (the command as logged), the board's PID in the contract's form and
+// r reconstructed from the logged u as a rig's users would (attach_rig_controller,
+// maglev_controller.hpp: w is not logged; r carries it and the reference's part of the
+// command); the PID settings, the reference schedule and the truth are kept under the sidecar's
+// `rig` and `simulation` keys. Its
 // operating point is *measured* as the rig's users take it: the means of x, i and u over the
 // second half of the first level (`operating_point_source: "measured"`).
 #include <cstdint>

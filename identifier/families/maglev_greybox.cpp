@@ -101,13 +101,44 @@ double emf_regressor(const MaglevGreyBoxInput& in, Index k, const Estimates& e) 
   return emf_factor(in.i(k), e.n_i, in.i0) * sum;  // the rate is per unit s: the Ts of dt cancels
 }
 
-// Step 1: i[k+1] = a i[k] + beta u[k] + gamma phi[k], columns equilibrated before the QR,
-// phi from the previous estimates.
-Coil fit_coil(const MaglevGreyBoxInput& in, const Estimates& e) {
+// The overlap-weighted score covariance of a least-squares fit whose equations k and k + l
+// share samples for |l| < lags (Bartlett weights): sum over l of w_l sum_k J_k' r_k r_{k+l} J_{k+l}.
+Eigen::MatrixXd score_covariance(const Eigen::MatrixXd& J, const Eigen::VectorXd& r, Index lags) {
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(J.cols(), J.cols());
+  for (Index l = -lags; l <= lags; ++l) {
+    const double bartlett = 1.0 - double(std::abs(l)) / double(lags + 1);
+    for (Index k = std::max<Index>(0, -l); k < r.size() && k + l < r.size(); ++k)
+      S += bartlett * (J.row(k).transpose() * r(k)) * (r(k + l) * J.row(k + l));
+  }
+  return S;
+}
+
+// Step 1: i[k+1] = a i[k] + beta u[k] + gamma phi[k] summed over windows of M samples
+// (M = coil_window / Ts, every start k), columns equilibrated before the QR, phi from the
+// previous estimates. The sum is the coil equation's own discretisation over the window: the
+// back-EMF regressor is the response-weighted change of the law's potential over each sample,
+// so its sum telescopes and the logged gap's noise (sensor noise and the 0.01 mm rounding)
+// enters it through the window's two ends only, while its signal grows with the window's
+// displacement. Per sample (M = 1) that noise is half of phi's variance at 1.3 ms and least
+// squares found Ke 40-52 % low (errors in variables); over M samples the attenuation falls as
+// 1/M^2. The PID's derivative term telescopes in the sum of u too, which leaves u's share of
+// the gap noise at Kp's instead of Kp Td / Ts. Covariance: sandwich with the residuals'
+// autocovariance over the windows' overlap.
+Coil fit_coil(const MaglevGreyBoxInput& in, const Estimates& e, Index M) {
   const Index n = in.x.size() - 1;
-  Eigen::MatrixXd A(n, 3);
-  Eigen::VectorXd b = in.i.tail(n);
-  for (Index k = 0; k < n; ++k) A.row(k) << in.i(k), in.u(k), emf_regressor(in, k, e);
+  Eigen::MatrixXd per_sample(n, 3);
+  Eigen::VectorXd next = in.i.tail(n);
+  for (Index k = 0; k < n; ++k) per_sample.row(k) << in.i(k), in.u(k), emf_regressor(in, k, e);
+  const Index rows = n - M + 1;
+  if (rows < 10) throw InsufficientData(kGreyboxWho + ": the record is too short for the coil's windows");
+  Eigen::MatrixXd A(rows, 3);
+  Eigen::VectorXd b(rows);
+  A.row(0) = per_sample.topRows(M).colwise().sum();
+  b(0) = next.head(M).sum();
+  for (Index k = 1; k < rows; ++k) {  // running sums
+    A.row(k) = A.row(k - 1) + per_sample.row(k + M - 1) - per_sample.row(k - 1);
+    b(k) = b(k - 1) + next(k + M - 1) - next(k - 1);
+  }
   const Eigen::Vector3d scale = A.colwise().norm().transpose();
   if (!(scale.array() > 0.0).all())
     throw InsufficientData(kGreyboxWho + ": the coil regression has a zero column (constant current, command or gap)");
@@ -124,9 +155,9 @@ Coil fit_coil(const MaglevGreyBoxInput& in, const Estimates& e) {
   c.beta = theta(1);
   c.gamma = theta(2);
   const Eigen::VectorXd r = b - A * theta;
-  c.residual_rms = std::sqrt(r.squaredNorm() / double(n));
-  const double s2 = r.squaredNorm() / double(n - 3);
-  c.covariance = scale.cwiseInverse().asDiagonal() * gram * scale.cwiseInverse().asDiagonal() * s2;
+  c.residual_rms = std::sqrt((next - per_sample * theta).squaredNorm() / double(n));  // per sample
+  const Eigen::MatrixXd scaled_cov = gram * score_covariance(As, r, M - 1) * gram;
+  c.covariance = scale.cwiseInverse().asDiagonal() * scaled_cov * scale.cwiseInverse().asDiagonal();
   if (!(c.a > 0.0 && c.a < 1.0) || !(c.beta > 0.0)) {
     std::ostringstream msg;
     msg << kGreyboxWho << ": the coil fit gives a = " << c.a << ", beta = " << c.beta
@@ -220,13 +251,12 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   if (in.i.size() != N || in.u.size() != N)
     throw Error(kGreyboxWho + ": x, i and u must have one entry per sample (" + std::to_string(N) + ", " +
                 std::to_string(in.i.size()) + ", " + std::to_string(in.u.size()) + ")");
-  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite())
-    throw Error(kGreyboxWho + ": a signal is not finite");
+  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite()) throw Error(kGreyboxWho + ": a signal is not finite");
   if ((in.x.array() <= 0.0).any()) throw Error(kGreyboxWho + ": the gap x must be positive in every sample");
-  if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0)) {
+  if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0) || !(in.coil_window >= 0.0)) {
     std::ostringstream msg;
-    msg << kGreyboxWho << ": sample time, operating gap, operating current and window must be positive, got "
-        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window;
+    msg << kGreyboxWho << ": sample time, operating gap, operating current and windows must be positive, got "
+        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window << ", " << in.coil_window;
     throw Error(msg.str());
   }
   if (N < 20) throw InsufficientData(kGreyboxWho + ": " + std::to_string(N) + " samples are too few");
@@ -234,7 +264,9 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   double n_i = nominal_value(in, "n_i"), n_x = nominal_value(in, "n_x");
   const double Ts = in.sample_time;
 
+  const Index coil_samples = std::max<Index>(1, Index(std::llround(in.coil_window / Ts)));
   MaglevGreyBoxFit out;
+  out.coil_window_samples = coil_samples;
   NonlinearLeastSquaresSolution solution;
   Coil coil;
   Eigen::Vector3d coil_values;
@@ -242,7 +274,7 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   // estimates: three passes (the third changes the second's parameters by ~1e-6).
   Estimates est{nominal_value(in, "R"), nominal_value(in, "L"), nominal_value(in, "Ke"), kw, n_i, n_x, 1.0, g};
   for (int pass = 0; pass < 3; ++pass) {
-    coil = fit_coil(in, est);
+    coil = fit_coil(in, est, coil_samples);
     coil_values = coil_physical({coil.a, coil.beta, coil.gamma}, Ts, kw, est.n_i);
     est.R = coil_values(0);
     est.L = coil_values(1);
@@ -275,16 +307,8 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   const Eigen::VectorXd& r = solution.residuals;
   const Eigen::MatrixXd H_inv = linalg::qr_inverse_gram(J);
   if (H_inv.size() == 0)
-    throw InsufficientData(kGreyboxWho +
-                           ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
-  const Index lags = 2 * out.window_samples;
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
-  for (Index l = -lags; l <= lags; ++l) {
-    const double bartlett = 1.0 - double(std::abs(l)) / double(lags + 1);
-    for (Index k = std::max<Index>(0, -l); k < r.size() && k + l < r.size(); ++k)
-      S += bartlett * (J.row(k).transpose() * r(k)) * (r(k + l) * J.row(k + l));
-  }
-  const Eigen::Matrix3d body_cov = H_inv * S * H_inv;
+    throw InsufficientData(kGreyboxWho + ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
+  const Eigen::Matrix3d body_cov = H_inv * score_covariance(J, r, 2 * out.window_samples) * H_inv;
 
   // Coil covariance through R, L, Ke (central differences of coil_physical).
   const Eigen::Vector3d p(coil.a, coil.beta, coil.gamma);
@@ -309,7 +333,11 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   };
   put("R", coil_values(0), coil_cov(0, 0));
   put("L", coil_values(1), coil_cov(1, 1));
-  put("Ke", coil_values(2), coil_cov(2, 2));
+  // Ke carries m^n_x / A^(n_i-1) like Km: the coil fits n_i Ke i0^(n_i-1) / x0^n_x, so the
+  // exponents' uncertainty moves it too, d ln Ke = ln x0 d n_x - (ln i0 + 1/n_i) d n_i (at
+  // 1.3-1.5 ms that is most of its sigma: an n_x 0.6 % off moved Ke 11 %).
+  const Eigen::Vector3d dlnKe(0.0, -std::log(in.i0) - 1.0 / n_i, std::log(in.x0));
+  put("Ke", coil_values(2), coil_cov(2, 2) + coil_values(2) * coil_values(2) * dlnKe.dot(body_cov * dlnKe));
   put("rho", rho, body_cov(0, 0));
   put("n_i", n_i, body_cov(1, 1));
   put("n_x", n_x, body_cov(2, 2));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "identifier/families/maglev_frf_structure.hpp"
 #include "identifier/families/maglev_greybox.hpp"
 
 namespace ambid::ident {
@@ -38,18 +39,9 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
   // Back-EMF constant closed like the force constant: Ke' = Ke / rho (Km' = Km / rho at the point).
   const double Ke_closed = v.at("Ke") / v.at("rho");
   const double emf = n_i * Ke_closed * std::pow(in.i0, n_i - 1.0) / (std::pow(in.x0, n_x) * L);
-  ContinuousSystem c;
-  c.A = Eigen::MatrixXd::Zero(3, 3);
-  c.A(0, 1) = 1.0;
-  c.A(1, 0) = v.at("stiffness");
-  c.A(1, 2) = -v.at("current_gain");
-  c.A(2, 1) = emf;
-  c.A(2, 2) = -R / L;
-  c.B = Eigen::Vector3d(0.0, 0.0, kw / L);
-  c.C = Eigen::MatrixXd::Zero(2, 3);
-  c.C(0, 0) = 1.0;
-  c.C(1, 2) = 1.0;
-  c.D = Eigen::MatrixXd::Zero(2, 1);
+  Eigen::VectorXd theta(5);
+  theta << v.at("stiffness"), v.at("current_gain"), R / L, kw / L, emf;
+  const ContinuousSystem c = maglev_structure_model(theta);
   model.continuous = c;
   model.discrete = c2d_zoh(c, e.sample_time);
   model.parameters = {
@@ -72,11 +64,9 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
                               {"nominal_equilibrium_current", i_nominal},
                               {"nominal_equilibrium_input", nominal("R") * i_nominal / kw},
                               {"current_ratio", in.i0 / i_nominal}};
-  extra["greybox"] = {{"window_samples", fit.window_samples},
-                      {"coil_residual_rms", fit.coil_residual_rms},
-                      {"body_residual_rms", fit.body_residual_rms},
-                      {"iterations", fit.iterations},
-                      {"taken_as_known", {"m", "g", "kw"}}};
+  extra["greybox"] = {{"window_samples", fit.window_samples},           {"coil_residual_rms", fit.coil_residual_rms},
+                      {"body_residual_rms", fit.body_residual_rms},     {"iterations", fit.iterations},
+                      {"coil_window_samples", fit.coil_window_samples}, {"taken_as_known", {"m", "g", "kw"}}};
   if (!fit.unsupported.empty()) {
     std::string list;
     for (const auto& name : fit.unsupported) list += (list.empty() ? "" : ", ") + name;

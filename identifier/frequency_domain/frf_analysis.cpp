@@ -10,6 +10,7 @@
 #include "identifier/frequency_domain/frf_plan.hpp"
 #include "identifier/frequency_domain/rational_fit_order.hpp"
 #include "identifier/frf_welch.hpp"
+#include "identifier/plant_families.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -31,6 +32,17 @@ void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double conf
       if (coherence != nullptr) p.coherence = coherence->col(i);
       report.pairs.push_back(std::move(p));
     }
+  }
+}
+
+// The family's structure on the plant FRF; a failure is a note.
+void fit_structure(FrfReport& report, const Experiment& e) {
+  const IdentificationFamily* family = find_identification_family(e.plant.model);
+  if (!family || !family->frf_structure) return;
+  try {
+    report.structured = fit_structured_frf(e, report.plant, family->frf_structure());
+  } catch (const Error& err) {
+    report.notes.push_back(std::string("structured fit of ") + e.plant.model + ": " + err.what());
   }
 }
 
@@ -175,6 +187,7 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.notes.push_back("no controller recorded: no sensitivity and no controller check");
   }
   if (o.fit) fit_pairs(report, e, o);
+  if (o.fit) fit_structure(report, e);
   return report;
 }
 

@@ -87,6 +87,11 @@ void print_summary(const ident::FrfReport& r, const std::string& path, const std
     if (!beyond.empty()) std::cout << " (beyond the fitted band, not resolved:" << beyond << ")";
     std::cout << "\n";
   }
+  if (r.structured)
+    for (std::size_t k = 0; k < r.structured->derived_names.size(); ++k)
+      std::cout << "  structure: " << r.structured->derived_names[k] << " "
+                << format_number(r.structured->derived_value(Eigen::Index(k))) << " +- "
+                << format_number(r.structured->derived_sigma(Eigen::Index(k))) << " (one sigma)\n";
   for (const std::string& note : r.notes) std::cout << "  note: " << note << "\n";
   std::cout << "  wrote " << out << "/frf.json and " << plots << " plots\n";
 }

@@ -116,6 +116,20 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
   for (const ident::FittedPair& fitted : report.fits)
     models[fitted.name] = model_json(fitted, fit_band_top_hz(experiment, options));
   out["model"] = models;
+  if (report.structured) {  // the plant family's structure (identifier/frf_analysis.hpp)
+    const ident::StructuredFrfFit& f = *report.structured;
+    json parameters = json::object(), derived = json::object();
+    for (std::size_t k = 0; k < f.parameter_names.size(); ++k)
+      parameters[f.parameter_names[k]] = {{"value", f.value(Eigen::Index(k))}, {"sigma", f.sigma(Eigen::Index(k))}};
+    for (std::size_t k = 0; k < f.derived_names.size(); ++k)
+      derived[f.derived_names[k]] = {{"value", f.derived_value(Eigen::Index(k))},
+                                     {"sigma", f.derived_sigma(Eigen::Index(k))}};
+    out["structure"] = {{"family", experiment.plant.model},
+                        {"parameters", parameters},
+                        {"derived", derived},
+                        {"misfit", f.misfit},
+                        {"converged", f.converged}};
+  }
   out["model_band_hz"] = {report.frequency_hz.size() ? report.frequency_hz(0) : 0.0,
                           fit_band_top_hz(experiment, options)};
   if (report.controller_check && report.controller_check->relative_error.size() > 0) {

@@ -67,9 +67,9 @@ void add_identify_command(CLI::App& app) {
     print_summary(model, args->out);
     std::cout << "  clamped samples (a controller clamp acted, not exogenous): " << read.clamped_samples << " of "
               << read.experiment.samples()
-              << (read.clamped_samples
-                      ? "; left out of the fit and of the validation nrmse (model.json clamped_samples)"
-                      : "")
+              << (read.clamped_samples ? "; left out of the validation nrmse, and of the fit unless its method keeps "
+                                         "them (model.json clamped_samples)"
+                                       : "")
               << "\n";
   });
 }

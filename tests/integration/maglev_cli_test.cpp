@@ -5,6 +5,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -22,6 +26,19 @@ using cli_test::CommandResult;
 using cli_test::fresh_dir;
 using cli_test::run_ambid;
 
+// The positive eigenvalue of the true plant linearised at the record's measured point (x0, i0),
+// the force and back-EMF constants closed by gravity balance there (maglev_identification.hpp).
+double true_unstable_pole(const Experiment& e) {
+  const auto& p = e.extra.json().at("simulation").at("true_parameters");
+  const double x0 = e.operating_point.at("x"), i0 = e.operating_point.at("i");
+  const double g = p.at("g"), n_i = p.at("n_i"), n_x = p.at("n_x"), L = p.at("L"), R = p.at("R");
+  const double rho = p.at("Km").get<double>() * std::pow(i0, n_i) / (p.at("m").get<double>() * g * std::pow(x0, n_x));
+  const double emf = n_i * p.at("Ke").get<double>() / rho * std::pow(i0, n_i - 1) / (std::pow(x0, n_x) * L);
+  Eigen::Matrix3d A;
+  A << 0, 1, 0, n_x * g / x0, 0, -n_i * g / i0, 0, emf, -R / L;
+  return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().real().maxCoeff();
+}
+
 TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
   const fs::path dir = fresh_dir("maglev_cli");
   const std::string stem = (dir / "run").string();
@@ -35,7 +52,9 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
   EXPECT_EQ(e.plant.model, "maglev1coil_voltage");
   EXPECT_DOUBLE_EQ(e.sample_time, 3.25e-3);
   EXPECT_EQ(e.y_names, (std::vector<std::string>{"x", "i"}));
-  EXPECT_FALSE(e.controller.has_value());  // the contract's form has no reference input
+  ASSERT_TRUE(e.controller.has_value());                // the board's PID in the contract's form
+  EXPECT_EQ(e.r_names, std::vector<std::string>{"r"});  // reconstructed from the logged u
+  EXPECT_TRUE(e.extra.json().at("rig").contains("not_in_controller"));
   EXPECT_EQ(e.extra.json().at("operating_point_source"), "measured");
 
   r = run_ambid("identify " + stem + ".json --method greybox --out " + (dir / "model.json").string());
@@ -49,10 +68,17 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
   EXPECT_NEAR(physical.at("n_x").get<double>() / 4.0, 1.0, 0.01);
   EXPECT_NEAR(physical.at("Km").get<double>() / 1.62e-8, 1.0, 0.01);
 
-  r = run_ambid("audit " + stem + ".json --out " + (dir / "audit").string());
-  EXPECT_EQ(r.status, 1);
-  // The rig's record has no controller in the contract's form and no r (w is not logged).
-  EXPECT_THAT(r.output, HasSubstr("the experiment has no controller, so the loop cannot be replayed"));
+  // frf: the family's structure on the plant FRF; its unstable pole against the truth's
+  // linearisation at the measured point.
+  r = run_ambid("frf " + stem + ".json --out " + (dir / "frf").string());
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("structure: unstable_pole "));
+  std::ifstream frf_in(dir / "frf" / "frf.json");
+  const nlohmann::json frf = nlohmann::json::parse(frf_in);
+  const auto& pole = frf.at("structure").at("derived").at("unstable_pole");
+  const double truth = true_unstable_pole(e);
+  EXPECT_NEAR(pole.at("value").get<double>() / truth, 1.0, std::max(0.05, 3 * pole.at("sigma").get<double>() / truth));
+  EXPECT_GT(pole.at("sigma").get<double>(), 0.0);
 }
 
 TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {

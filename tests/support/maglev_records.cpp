@@ -1,8 +1,6 @@
 #include "support/maglev_records.hpp"
 
-#include "core/controller_replay.hpp"
 #include "core/error.hpp"
-#include "plant_sim/maglev_controller.hpp"
 
 namespace ambid::test_support {
 
@@ -22,13 +20,8 @@ Experiment maglev_record(const sim::MaglevParameters& truth, const sim::MaglevRi
                          const sim::MaglevRunOptions& run) {
   sim::MaglevRun result = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), rig, run);
   if (!result.ended.empty()) throw Error(result.ended);
-  Experiment e = std::move(result.experiment);
-  e.controller = sim::maglev_rig_controller(rig, e.sample_time);
-  const ControllerReplay replay = replay_controller(e);
-  e.r_names = {"r"};
-  e.r = e.u_deviation() - replay.output;  // operating value of r: 0
-  e.validate();
-  return e;
+  result.experiment.validate();  // with the PID and r of attach_rig_controller
+  return std::move(result.experiment);
 }
 
 }  // namespace ambid::test_support
