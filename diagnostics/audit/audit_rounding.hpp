@@ -14,5 +14,4 @@ namespace ambid::diag {
 // or the column holds fewer than two distinct values.
 Eigen::VectorXd logging_resolution(const Eigen::MatrixXd& logged);
 
-
 }  // namespace ambid::diag

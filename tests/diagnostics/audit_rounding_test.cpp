@@ -22,16 +22,14 @@ Eigen::VectorXd uniform(Eigen::Index n, double lo, double hi, std::uint64_t seed
   return v;
 }
 
-Eigen::VectorXd rounded(const Eigen::VectorXd& v, double step) {
-  return (v / step).array().round().matrix() * step;
-}
+Eigen::VectorXd rounded(const Eigen::VectorXd& v, double step) { return (v / step).array().round().matrix() * step; }
 
 TEST(AuditRounding, TheLoggingResolutionIsReadFromTheValues) {
   Eigen::MatrixXd logged(2000, 4);
   logged.col(0) = rounded(uniform(2000, 0.013, 0.016, 1), 1e-5);  // 0.01 mm in m
   logged.col(1) = rounded(uniform(2000, 0.0, 12.0, 2), 0.01);     // 0.01 V
   logged.col(2) = uniform(2000, 0.0, 1.0, 3);                     // full precision
-  logged.col(3).setConstant(0.5);                                  // constant: nothing to read
+  logged.col(3).setConstant(0.5);                                 // constant: nothing to read
   const Eigen::VectorXd q = logging_resolution(logged);
   EXPECT_DOUBLE_EQ(q(0), 1e-5);
   EXPECT_DOUBLE_EQ(q(1), 0.01);
@@ -49,7 +47,8 @@ TEST(AuditRounding, TheDacStepIsReadFromTheCurrent) {
   const double a = std::exp(-830.0 * 3.25e-3), b = (1.0 - a) / 210.0;
   Eigen::VectorXd current(n);
   current(0) = 0.019;
-  for (Eigen::Index k = 0; k + 1 < n; ++k) current(k + 1) = a * current(k) + b * std::nearbyint(command(k) / 0.35) * 0.35;
+  for (Eigen::Index k = 0; k + 1 < n; ++k)
+    current(k + 1) = a * current(k) + b * std::nearbyint(command(k) / 0.35) * 0.35;
   const Eigen::VectorXd logged = rounded(current, 1e-5);
   const DacScreen s = screen_dac_step(command, logged, 0.02, 2.0);
   EXPECT_NEAR(s.step, 0.35, 0.35 * 5e-4);
