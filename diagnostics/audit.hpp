@@ -91,6 +91,12 @@ struct AuditOptions {
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
   double residual_alpha = 0.01;         // P(the residual check rejects a right model)
   int max_effects = 3;                  // effects accepted at most (sequentially), 1 to 3
+  // On a record logged at a coarse resolution (audit_rounding.hpp) the replay follows the
+  // logged rounding (audit_replay.hpp), and its residual is no longer noise independent of the
+  // model: within half a step the replay runs open loop, and any candidate that reshapes that
+  // drift improves it "significantly". A finding there must also lower nrmse_total by at least
+  // this fraction of the model it extends; in [0, 1).
+  double rounded_min_improvement = 0.1;
   FitOptions fit;
 };
 
@@ -122,6 +128,7 @@ struct AuditResult {
   ResidualCheck nominal_check;         // the nominal model's validation residual against noise
   Segment estimation, validation;      // both leave out the samples where a controller clamp acted
   Eigen::Index clamped_samples = 0;    // of the record (controller.output_limits, state_limits)
+  bool rounded = false;                // the record is logged at a coarse resolution (audit_rounding.hpp)
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
   // segment, |correlation| of each nominal residual with each excitation (outputs x r).

@@ -69,6 +69,14 @@ struct Loop {
   Eigen::VectorXd y_op{}, u_op{}, r_op{};
   Eigen::VectorXd x{};  // plant state, starts at the operating point
 
+  // What the controller reads of output i at sample k when the plant puts out `value`
+  // (ClosedLoopOptions::followed).
+  double read(Eigen::Index k, Eigen::Index i, double value) const {
+    if (options.followed_resolution.size() == 0 || !(options.followed_resolution(i) > 0.0)) return value;
+    const double logged = options.followed(k, i), half = 0.5 * options.followed_resolution(i);
+    return value > logged + half ? value - half : value < logged - half ? value + half : logged;
+  }
+
   // Fills out.t, y, u, r; returns the number of saturated samples.
   template <int NC, int NV, int NU>
   Eigen::Index run(const StateSpaceController& ctrl, Experiment& out) {
@@ -97,7 +105,7 @@ struct Loop {
 
       // uf = C xc + D v needs v, whose u entries need uf: D has zero u columns (validated), so
       // evaluate uf with those entries zero, then fill them in for the state update.
-      for (const auto [j, i] : from_output) v(j) = y(i) - y_op(i);
+      for (const auto [j, i] : from_output) v(j) = read(k, i, y(i)) - y_op(i);
       for (const auto [j, i] : from_excitation) v(j) = options.excitation(k, i);
       for (const auto [j, i] : from_input) v(j) = 0.0;
       du.noalias() = C * xc + D * v;
@@ -180,6 +188,15 @@ Experiment run_closed_loop(const Plant& truth, const Experiment& header, const C
   check_size("process_noise_std", options.process_noise_std, nw);
   check_size("input_lower", options.input_lower, nu);
   check_size("input_upper", options.input_upper, nu);
+  check_size("followed_resolution", options.followed_resolution, ny);
+  if ((options.followed_resolution.size() != 0) != (options.followed.size() != 0) ||
+      (options.followed.size() != 0 &&
+       (options.followed.rows() < N || options.followed.cols() != ny || !options.followed.allFinite() ||
+        (options.followed_resolution.array() < 0.0).any())))
+    throw Error("closed loop: a followed record needs at least " + std::to_string(N) + " finite rows of " +
+                std::to_string(ny) + " outputs and a resolution >= 0 per output, got " +
+                std::to_string(options.followed.rows()) + "x" + std::to_string(options.followed.cols()) + " and " +
+                std::to_string(options.followed_resolution.size()) + " resolutions");
   const bool limited =
       options.input_lower.size() != 0 || options.input_upper.size() != 0 || !ctrl.output_limits.empty();
   Eigen::VectorXd lower = options.input_lower.size() ? options.input_lower : Eigen::VectorXd::Constant(nu, -INFINITY);

@@ -26,6 +26,16 @@ struct ClosedLoopOptions {
   // tighter bound wins) and its state_limits clamp its state update.
   Eigen::VectorXd input_lower, input_upper;
   std::uint64_t seed = 0;
+  // A rounded record to follow: its outputs as logged (absolute, samples x plant outputs) and
+  // per output the resolution they were logged at (0: full precision). A controller input
+  // from an output of resolution q > 0 reads the logged value while the plant's output lies
+  // within q/2 of it (the logger would have printed that value), else the plant's output less
+  // q/2 toward the logged value (a dead zone of half a step). A model that agrees with the
+  // record thus reproduces the record's rounding, and an excitation reconstructed from the
+  // rounded record (r = u - C y_logged) drives it without the controller's answer to the
+  // rounding, which the plant never had. Both empty: the plant's output as it is.
+  Eigen::MatrixXd followed;
+  Eigen::VectorXd followed_resolution;
 };
 
 struct ClosedLoopStatistics {

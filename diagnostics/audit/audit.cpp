@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_mode_search.hpp"
 #include "diagnostics/audit/audit_residual_check.hpp"
+#include "diagnostics/audit/audit_rounding.hpp"
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
@@ -171,10 +172,11 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   std::stable_sort(scored.begin(), scored.end(),
                    [](const Scored& a, const Scored& b) { return a.finding.score > b.finding.score; });
   const double threshold = acceptance_threshold(options.false_acceptance, std::max(1, int(scored.size())));
+  const double required_total = r.rounded ? (1.0 - options.rounded_min_improvement) * base_total : base_total;
   for (auto& s : scored) {
     s.finding.z_threshold = threshold;
     s.finding.significant =
-        s.finding.test.reduction > 0.0 && s.finding.test.z > threshold && s.finding.nrmse_total_after < base_total;
+        s.finding.test.reduction > 0.0 && s.finding.test.z > threshold && s.finding.nrmse_total_after < required_total;
   }
   return scored;
 }
@@ -190,6 +192,9 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     throw Error("audit: residual_alpha must be in (0, 1), got " + std::to_string(options.residual_alpha));
   if (options.max_effects < 1 || options.max_effects > 3)
     throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
+  if (!(options.rounded_min_improvement >= 0.0 && options.rounded_min_improvement < 1.0))
+    throw Error("audit: rounded_min_improvement must be in [0, 1), got " +
+                std::to_string(options.rounded_min_improvement));
   const double dt = measured.sample_time;
   const Eigen::Index N = measured.samples();
   AuditResult r;
@@ -198,6 +203,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
   r.validation = {r.estimation.end, N};
+  r.rounded = (logging_resolution(measured.y).array() > 0.0).any();
   const ControllerReplay clamps = clamped_samples(measured);  // not exogenous: no score counts them
   r.clamped_samples = clamps.clamped_samples;
   if (r.clamped_samples > 0) r.estimation.left_out = r.validation.left_out = clamps.clamped;

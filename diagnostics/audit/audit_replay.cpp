@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "core/error.hpp"
+#include "diagnostics/audit/audit_rounding.hpp"
 #include "diagnostics/plant_families.hpp"
 #include "plant_sim/closed_loop.hpp"
 #include "plant_sim/families.hpp"
@@ -28,6 +29,11 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   sim::ClosedLoopOptions options;
   options.samples = samples;
   options.excitation = measured.r_deviation().topRows(samples);
+  const Eigen::VectorXd resolution = logging_resolution(measured.y);
+  if ((resolution.array() > 0.0).any()) {
+    options.followed = measured.y.topRows(samples);
+    options.followed_resolution = resolution;
+  }
   Experiment header = measured;
   header.t.resize(0);
   header.y.resize(0, 0);

@@ -24,7 +24,9 @@ struct Segment {
 
 // The nominal model of the sidecar's plant family with `effects` of its catalogue (the family's
 // extended simulator, plant_sim/families.hpp), replayed for the first `samples` samples;
-// outputs as deviations from the operating point (samples x outputs). Error when the
+// outputs as deviations from the operating point (samples x outputs). A record logged at a
+// coarse resolution (audit_rounding.hpp) is followed: the controller reads the logged value
+// while the model's output lies within half a step of it (ClosedLoopOptions::followed). Error when the
 // experiment has no controller or no excitation, its family has no effect catalogue, or the
 // model leaves its valid region (e.g. the rotor touches the bearing).
 Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,

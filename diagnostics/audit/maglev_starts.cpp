@@ -1,31 +1,54 @@
 #include "diagnostics/audit/maglev_starts.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "core/model_file.hpp"
+#include "diagnostics/audit/audit_quantisation.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "identifier/plant_families.hpp"
 #include "plant_sim/maglev_effects.hpp"
 
 namespace ambid::diag {
 
+namespace {
+
+// Index of signal `name` in `names`, or -1.
+Eigen::Index signal(const std::vector<std::string>& names, const char* name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : Eigen::Index(it - names.begin());
+}
+
+}  // namespace
+
 std::vector<sim::Effect> maglev_audit_starts(const Experiment& measured) {
-  Model fit;
-  try {
-    const ident::IdentificationFamily* family = ident::find_identification_family(measured.plant.model);
-    if (!family || !family->greybox) return {};
-    family->greybox(measured, ident::IdentifyOptions{}, fit);
-  } catch (const Error&) {
-    return {};  // InsufficientData included: the catalogue's own starts remain
-  }
-  const auto& nominal = measured.plant.parameters;
   std::vector<sim::Effect> starts;
+  const auto& catalogue = sim::maglev_effect_catalogue();
   const auto add = [&](const char* effect, const std::map<std::string, double>& values) {
     try {
-      starts.push_back(sim::make_effect(sim::maglev_effect_catalogue(), effect, values));
+      starts.push_back(sim::make_effect(catalogue, effect, values));
     } catch (const Error&) {
       // outside the catalogue's physical range: not a start
     }
   };
+  // A reading late by whole samples.
+  for (const double samples : {1.0, 2.0}) add("sensor_delay", {{"delay", samples * measured.sample_time}});
+  // The DAC's step as the current reads it, over the catalogue's range.
+  const Eigen::Index u = signal(measured.u_names, "u"), i = signal(measured.y_names, "i");
+  const auto& step = sim::effect_spec(catalogue, "actuator_quantisation").parameters.front();
+  if (u >= 0 && i >= 0 && measured.samples() >= 10)
+    add("actuator_quantisation",
+        {{"step", screen_dac_step(measured.u.col(u), measured.y.col(i), 0.01 * step.upper, step.upper).step}});
+
+  Model fit;
+  try {
+    const ident::IdentificationFamily* family = ident::find_identification_family(measured.plant.model);
+    if (!family || !family->greybox) return starts;
+    family->greybox(measured, ident::IdentifyOptions{}, fit);
+  } catch (const Error&) {
+    return starts;  // InsufficientData included: the catalogue's own starts remain
+  }
+  const auto& nominal = measured.plant.parameters;
   add("force_law",
       {{"dn_i", fit.physical.at("n_i") - nominal.at("n_i")}, {"dn_x", fit.physical.at("n_x") - nominal.at("n_x")}});
   add("coil_resistance", {{"dR", fit.physical.at("R") - nominal.at("R")}});

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/controller_replay.hpp"
 #include "core/error.hpp"
 #include "core/state_space.hpp"
 #include "plant_sim/closed_loop.hpp"
@@ -105,6 +106,38 @@ TEST(ClosedLoop, Amb1dofRecordingReplaysThroughItsController) {
   ASSERT_EQ(e.controller->states(), 5);
   EXPECT_GT((e.u.rowwise() - e.u.row(0)).cwiseAbs().maxCoeff(), 0.05);  // the loop really moved
   EXPECT_LT(replay_error(e), 1e-12);
+}
+
+// A record logged at a coarse resolution, followed: the controller reads the logged value
+// while the plant lies within half a step of it, so the same plant driven by the excitation
+// reconstructed from the rounded record (u - the controller's answer to the logged y) gives
+// the recorded commands back; read as it is, the plant's output makes the controller answer
+// the rounding, and the replay parts from the record.
+TEST(ClosedLoop, ARoundedRecordIsFollowedWithinHalfAStep) {
+  RotorLoop loop;
+  ClosedLoopOptions options;
+  options.samples = 400;
+  options.excitation = Eigen::MatrixXd::Random(400, 1) * 0.1;
+  Experiment logged = run_closed_loop(loop.plant, loop.header, options);
+  const Eigen::MatrixXd commanded = logged.u;
+  const double step = 1e-2 * logged.y.cwiseAbs().maxCoeff(), u_scale = commanded.cwiseAbs().maxCoeff();
+  ASSERT_GT(step, 0.0);
+  logged.y = (logged.y / step).array().round().matrix() * step;
+  options.excitation = logged.u - replay_controller(logged).output;  // no operating point: deviations
+
+  ClosedLoopOptions followed = options;
+  followed.followed = logged.y;
+  followed.followed_resolution = Eigen::VectorXd::Constant(1, step);
+  const Experiment replay = run_closed_loop(loop.plant, loop.header, followed);
+  EXPECT_LT((replay.u - commanded).cwiseAbs().maxCoeff(), 1e-9 * u_scale);
+  EXPECT_LE((replay.y - logged.y).cwiseAbs().maxCoeff(), 0.5 * step * (1.0 + 1e-9));
+
+  const Experiment unfollowed = run_closed_loop(loop.plant, loop.header, options);
+  EXPECT_GT((unfollowed.u - commanded).cwiseAbs().maxCoeff(), 1e-3 * u_scale);
+
+  followed.followed_resolution = Eigen::VectorXd::Constant(2, step);
+  EXPECT_THAT([&] { run_closed_loop(loop.plant, loop.header, followed); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("followed_resolution has 2 entries, expected 1")));
 }
 
 // A plant error inside the loop surfaces with the time it happened: 100 V on coil 1 pulls the

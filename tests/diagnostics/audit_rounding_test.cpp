@@ -1,0 +1,69 @@
+// What the audit reads of a rounded record from the record itself: the logging resolution
+// (audit_rounding.hpp) and a DAC's step (audit_quantisation.hpp), on signals built here with
+// known steps.
+#include <cmath>
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "diagnostics/audit/audit_quantisation.hpp"
+#include "diagnostics/audit/audit_rounding.hpp"
+
+namespace ambid::diag {
+namespace {
+
+Eigen::VectorXd uniform(Eigen::Index n, double lo, double hi, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> d(lo, hi);
+  Eigen::VectorXd v(n);
+  for (double& x : v) x = d(rng);
+  return v;
+}
+
+Eigen::VectorXd rounded(const Eigen::VectorXd& v, double step) { return (v / step).array().round().matrix() * step; }
+
+TEST(AuditRounding, TheLoggingResolutionIsReadFromTheValues) {
+  Eigen::MatrixXd logged(2000, 4);
+  logged.col(0) = rounded(uniform(2000, 0.013, 0.016, 1), 1e-5);  // 0.01 mm in m
+  logged.col(1) = rounded(uniform(2000, 0.0, 12.0, 2), 0.01);     // 0.01 V
+  logged.col(2) = uniform(2000, 0.0, 1.0, 3);                     // full precision
+  logged.col(3).setConstant(0.5);                                 // constant: nothing to read
+  const Eigen::VectorXd q = logging_resolution(logged);
+  EXPECT_DOUBLE_EQ(q(0), 1e-5);
+  EXPECT_DOUBLE_EQ(q(1), 0.01);
+  EXPECT_EQ(q(2), 0.0);
+  EXPECT_EQ(q(3), 0.0);
+  // 0.02 V steps are read as 0.02, not as the 0.01 they are also multiples of.
+  EXPECT_DOUBLE_EQ(logging_resolution(rounded(uniform(2000, 0.0, 12.0, 4), 0.02))(0), 0.02);
+}
+
+// A first-order coil (a = exp(-R Ts / L), 830 rad/s at 3.25 ms) driven by the command rounded
+// to 0.35 V, its current logged at 0.01 mA: the screen reads the step to 0.05 %.
+TEST(AuditRounding, TheDacStepIsReadFromTheCurrent) {
+  const Eigen::Index n = 3000;
+  const Eigen::VectorXd command = rounded(uniform(n, 3.0, 5.0, 5), 0.01);
+  const double a = std::exp(-830.0 * 3.25e-3), b = (1.0 - a) / 210.0;
+  Eigen::VectorXd current(n);
+  current(0) = 0.019;
+  for (Eigen::Index k = 0; k + 1 < n; ++k)
+    current(k + 1) = a * current(k) + b * std::nearbyint(command(k) / 0.35) * 0.35;
+  const Eigen::VectorXd logged = rounded(current, 1e-5);
+  const DacScreen s = screen_dac_step(command, logged, 0.02, 2.0);
+  EXPECT_NEAR(s.step, 0.35, 0.35 * 5e-4);
+  EXPECT_LT(s.residual, 0.01 * s.unrounded);
+
+  // Without a DAC no step explains the current much better than the command itself.
+  for (Eigen::Index k = 0; k + 1 < n; ++k) current(k + 1) = a * current(k) + b * command(k);
+  const DacScreen none = screen_dac_step(command, rounded(current, 1e-5), 0.02, 2.0);
+  EXPECT_GT(none.residual, 0.5 * none.unrounded);
+
+  EXPECT_THAT([&] { screen_dac_step(command, logged.head(10), 0.02, 2.0); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("same length")));
+  EXPECT_THAT([&] { screen_dac_step(command, logged, 0.0, 2.0); },
+              ::testing::ThrowsMessage<Error>(::testing::HasSubstr("0 < smallest < largest")));
+}
+
+}  // namespace
+}  // namespace ambid::diag
