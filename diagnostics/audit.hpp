@@ -95,7 +95,7 @@ struct AuditOptions {
   Eigen::Index covariance_lags = 1000;  // M of the noise covariance in the improvement test
   double residual_alpha = 0.01;         // P(the residual check rejects a right model)
   int max_effects = 3;                  // effects accepted at most (sequentially), 1 to 3
-  double foil_margin = 1.0;             // z by which a cause must beat every significant foil (audit_foils.hpp)
+  double foil_margin = 1.5;             // z by which a cause must beat every significant foil (audit_foils.hpp)
   FitOptions fit;
 };
 

@@ -8,13 +8,13 @@
 //
 // Rule: the catalogue finding stays a cause only when, against every foil that is itself
 // significant, its own validation improvement over the foil's replay reaches z > margin
-// (AuditOptions::foil_margin, 1). The static signature of a force imbalance is one-dimensional
+// (AuditOptions::foil_margin, 1.5). The static signature of a force imbalance is one-dimensional
 // whatever causes it (the controller fixes how x and the currents settle), so a sensor offset
 // and one coil's force factor differ only in their dynamics, near the noise at 0.1 um / 1 mA:
 // force_factor truths (dratio 0.12-0.17) beat the offset foil by z 1.8, -0.4, 1.6; sensor
-// offsets (4-5 um) were beaten by force_factor at z 0.02, -0.24, 0.88. A margin of 1 keeps most
-// force factors and lets a true offset be named force_factor at most 16 % of the time (z is
-// standard normal, or lower, when the foil is right); 2.33 (1 %) lost every force factor.
+// offsets (4-5 um) were beaten by force_factor at z 0.02, -0.24, 0.88, 1.3. Under H0 (the foil
+// right) that z is standard normal or lower, so a true offset is named force_factor at most
+// 7 % of the time; a margin of 2.33 (1 %) lost every force factor, 1 named one offset of four.
 //
 // A foil changes the sidecar the nominal model is replayed from, so it needs no simulator of
 // its own. amb1dof_voltage: one coil's leakage inductance (Ls1, Ls2 x (1 + e)), and the
