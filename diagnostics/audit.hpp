@@ -38,12 +38,15 @@
 // the remaining effects on top of the effects taken (same screening, fit, significance test
 // against the previous extended model, residual check). The search ends when no candidate of a round is significant.
 // Then cause = the first effect taken and `causes` all of them in order when the last extended model passes the
-// residual check; "unexplained" when it does not, or when nothing is significant but the nominal residual fails the
+// residual check and the first effect taken predicts the validation segment better, by a z of `foil_margin`, than
+// every significant out-of-catalogue foil (audit_foils.hpp: one coil's inductance, a sensor offset, fitted on the
+// nominal model); "unexplained" when either fails, or when nothing is significant but the nominal residual fails the
 // check; "none" when nothing is significant and the nominal residual passes. On data where the nominal model is right a
 // catalogue cause is named with probability at most `false_acceptance` and "unexplained" with at most `residual_alpha`;
 // with one right effect, a false second one is added with probability at most `false_acceptance`. Besides: the plant
 // FRF ratio measured / model (audit_frf.hpp), the nominal residual's correlation with each excitation, and its
-// dependence on amplitude (audit_amplitude.hpp).
+// dependence on amplitude (audit_amplitude.hpp). audit.json adds "out_of_catalogue" [{mismatch, unit, value, z,
+// cause_over_it_z, nrmse2_reduction}] (the foils) and "out_of_catalogue_beats_cause" (the foil's name, or null).
 //
 // audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
 // order accepted, empty unless cause is a catalogue effect; "finding" the index into
@@ -72,6 +75,7 @@
 #include "core/experiment.hpp"
 #include "diagnostics/audit/audit_amplitude.hpp"
 #include "diagnostics/audit/audit_fit.hpp"
+#include "diagnostics/audit/audit_foils.hpp"
 #include "diagnostics/audit/audit_frf.hpp"
 #include "diagnostics/audit/audit_replay.hpp"
 #include "diagnostics/audit/audit_residual_check.hpp"
@@ -97,6 +101,7 @@ struct AuditOptions {
   // drift improves it "significantly". A finding there must also lower nrmse_total by at least
   // this fraction of the model it extends; in [0, 1).
   double rounded_min_improvement = 0.1;
+  double foil_margin = 1.5;             // z by which a cause must beat every significant foil (audit_foils.hpp)
   FitOptions fit;
 };
 
@@ -143,6 +148,11 @@ struct AuditResult {
   AmplitudeDependence amplitude;
   std::vector<sim::Effect> extended_effects;     // the accepted effects in order, or empty
   std::vector<sim::Effect> unexplained_effects;  // taken provisionally when cause is unexplained
+  // The family's out-of-catalogue foils (audit_foils.hpp), fitted on the nominal model when a
+  // round took an effect, and the first significant one the first effect taken does not beat
+  // significantly (then the cause is unexplained); empty when none.
+  std::vector<FoilFinding> foils;
+  std::string foil_beats_cause;
 };
 
 // Error/InsufficientData when the experiment cannot be audited (no controller, no

@@ -508,11 +508,7 @@ Model identify_experiment(const Experiment& e, const IdentifyOptions& o) {
   try {
     method.fit(fit, resolved, model);
   } catch (const InsufficientData& error) {
-<<<<<<< HEAD
-    if (fit_clamped == 0 || !method.leaves_out_clamped.empty()) throw;
-=======
-    if (fit_clamped == 0 || method.leaves_out_clamped || keeps_clamped) throw;
->>>>>>> maglev-e2e
+    if (fit_clamped == 0 || !method.leaves_out_clamped.empty() || keeps_clamped) throw;
     throw InsufficientData(std::string(error.what()) + " (" + clamp_handling + ")");
   }
   model.discrete.sample_time = e.sample_time;

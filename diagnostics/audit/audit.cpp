@@ -73,6 +73,10 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
     s << "; coil " << f.effect.channel << " force factor K" << f.effect.channel << " x " << 1.0 + f.effect.at("dratio");
   s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
   s << "; validation improvement z = " << f.test.z << " (accepted above " << f.z_threshold << ")";
+  if (f.significant)
+    for (const FoilFinding& foil : r.foils)
+      s << "; out of the catalogue, " << foil.name << " " << foil.value << " " << foil.unit << " at z = " << foil.test.z
+        << " (this effect over it: z = " << foil.rival_gain.z << ")";
   if (f.residual.determinable)
     s << "; extended residual " << (f.residual.consistent ? "consistent with noise" : "NOT consistent with noise")
       << " (mean coherence with r up to " << f.residual.coherence_mean.maxCoeff() << ", p = " << f.residual.p_value
@@ -190,6 +194,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     throw Error("audit: estimation_fraction must be in (0.1, 0.9), got " + std::to_string(options.estimation_fraction));
   if (!(options.residual_alpha > 0.0 && options.residual_alpha < 1.0))
     throw Error("audit: residual_alpha must be in (0, 1), got " + std::to_string(options.residual_alpha));
+  if (!std::isfinite(options.foil_margin))
+    throw Error("audit: foil_margin must be finite, got " + std::to_string(options.foil_margin));
   if (options.max_effects < 1 || options.max_effects > 3)
     throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
   if (!(options.rounded_min_improvement >= 0.0 && options.rounded_min_improvement < 1.0))
@@ -236,7 +242,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   // finds a significant improvement. The residual check judges the last model.
   std::vector<sim::Effect> taken;
   std::vector<std::size_t> taken_findings;
-  ReplayedLoop current = nominal;
+  ReplayedLoop current = nominal, first_loop;
   double current_total = r.baseline_total;
   ResidualCheck current_check = r.nominal_check;
   for (int round = 1; round <= options.max_effects; ++round) {
@@ -256,12 +262,24 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     if (pick == scored.end()) break;
     taken.push_back(pick->finding.effect);
     taken_findings.push_back(offset + std::size_t(pick - scored.begin()));
+    if (round == 1) first_loop = pick->loop;
     current = std::move(pick->loop);
     current_total = pick->finding.nrmse_total_after;
     current_check = pick->finding.residual;
   }
+  // The foils: a catalogue effect is named only when it predicts the validation segment
+  // significantly better than every significant mismatch outside the catalogue.
+  if (!taken.empty()) {
+    if (options.progress) options.progress("fit the out-of-catalogue foils", 0, 1);
+    r.foils = fit_foils(measured, r.measured, {}, r.nominal, first_loop.y, r.estimation, r.validation,
+                        options.covariance_lags, options.fit);
+    for (const FoilFinding& f : r.foils)
+      if (f.test.z > r.z_threshold && f.test.reduction > 0.0 && !(f.rival_gain.z > options.foil_margin) &&
+          r.foil_beats_cause.empty())
+        r.foil_beats_cause = f.name;
+  }
   for (auto& f : r.findings) f.evidence = describe(f, r, r.excitation_correlation.rowwise().maxCoeff());
-  if (!taken.empty() && current_check.consistent) {
+  if (!taken.empty() && current_check.consistent && r.foil_beats_cause.empty()) {
     for (std::size_t i : taken_findings) {
       r.findings[i].accepted = true;
       r.causes.push_back(r.findings[i].effect.name);
@@ -360,6 +378,14 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
     }
   nlohmann::json unexplained_after = nlohmann::json::array();
   for (const auto& e : r.unexplained_effects) unexplained_after.push_back(effect_json(e));
+  nlohmann::json foils = nlohmann::json::array();
+  for (const auto& f : r.foils)
+    foils.push_back({{"mismatch", f.name},
+                     {"unit", f.unit},
+                     {"value", f.value},
+                     {"z", f.test.z},
+                     {"cause_over_it_z", f.rival_gain.z},
+                     {"nrmse2_reduction", f.test.reduction}});
   nlohmann::json correlation = nlohmann::json::object();
   for (std::size_t j = 0; j < r.outputs.size(); ++j)
     for (Eigen::Index i = 0; i < r.excitation_correlation.cols(); ++i)
@@ -416,7 +442,10 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
              "excited bins against its null law) at residual_alpha; otherwise cause is unexplained"},
             {"residual_alpha", r.residual_alpha}}},
           {"residual_check", check_json(r.nominal_check, r)},
-          {"unexplained_after", unexplained_after}};
+          {"unexplained_after", unexplained_after},
+          {"out_of_catalogue", foils},
+          {"out_of_catalogue_beats_cause",
+           r.foil_beats_cause.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.foil_beats_cause)}};
 }
 
 nlohmann::json extended_model_json(const Experiment& measured, const AuditResult& r) {

@@ -15,37 +15,6 @@ namespace {
 // faster than a sample changes nothing measurable but costs integrator sub-steps.
 constexpr double kSmallestLag = 0.05;
 
-struct ReplayResiduals {
-  const Experiment& measured;
-  const Eigen::MatrixXd& measured_y;
-  sim::Effect effect;
-  std::vector<sim::EffectParameterSpec> specs;
-  Segment estimation;
-  Eigen::VectorXd inverse_spread;  // 1 / ||y_j - mean|| on the estimation segment
-  std::vector<sim::Effect> base;   // effects already accepted, replayed along
-
-  sim::Effect at(const double* theta) const {
-    sim::Effect e = effect;
-    for (std::size_t i = 0; i < specs.size(); ++i) e.parameters[specs[i].name] = theta[i] * specs[i].scale;
-    return e;
-  }
-
-  bool operator()(const double* theta, double* residuals) const {
-    Eigen::MatrixXd y;
-    try {
-      std::vector<sim::Effect> effects = base;
-      effects.push_back(at(theta));
-      y = replay_outputs(measured, effects, estimation.end);
-    } catch (const Error&) {
-      return false;  // the rotor touched the bearing, or an invalid parameter: not a step to take
-    }
-    const Eigen::Index n = estimation.size();
-    Eigen::Map<Eigen::MatrixXd> r(residuals, n, y.cols());
-    r = (measured_y.middleRows(estimation.begin, n) - y.middleRows(estimation.begin, n)) * inverse_spread.asDiagonal();
-    return r.allFinite();
-  }
-};
-
 }  // namespace
 
 double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measured_y,
@@ -60,40 +29,65 @@ double estimation_cost(const Experiment& measured, const Eigen::MatrixXd& measur
   }
 }
 
+ScaledFit fit_scaled(const Eigen::MatrixXd& measured_y, const Segment& estimation,
+                     const std::function<Eigen::MatrixXd(const double* theta)>& replay, Eigen::VectorXd start,
+                     const Eigen::VectorXd& lower, const Eigen::VectorXd& upper, const FitOptions& options) {
+  // 1 / ||y_j - mean|| on the estimation segment: the residuals are the NRMSE's terms.
+  const Eigen::VectorXd inverse_spread =
+      nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();
+  const Eigen::Index n = estimation.size();
+  ident::NonlinearLeastSquares problem;
+  problem.residuals = [&](const double* theta, double* residuals, double*) {
+    Eigen::MatrixXd y;
+    try {
+      y = replay(theta);
+    } catch (const Error&) {
+      return false;  // the rotor touched the bearing, or an invalid parameter: not a step to take
+    }
+    Eigen::Map<Eigen::MatrixXd> r(residuals, n, y.cols());
+    r = (measured_y.middleRows(estimation.begin, n) - y.middleRows(estimation.begin, n)) * inverse_spread.asDiagonal();
+    return r.allFinite();
+  };
+  problem.residual_count = int(n * measured_y.cols());
+  problem.differentiation = ident::Differentiation::central;
+  problem.lower = lower;
+  problem.upper = upper;
+  ident::NonlinearLeastSquaresOptions solver;
+  solver.max_iterations = options.max_iterations;
+  start = start.cwiseMax(lower).cwiseMin(upper);
+  const ident::NonlinearLeastSquaresSolution solution = ident::solve_nonlinear_least_squares(problem, start, solver);
+  return {solution.x, 2.0 * solution.final_cost,  // the solver reports half the sum of squares
+          solution.iterations, solution.termination == ident::Termination::converged};
+}
+
 EffectFit fit_effect(const Experiment& measured, const Eigen::MatrixXd& measured_y, const sim::Effect& start,
                      const Segment& estimation, const FitOptions& options, const std::vector<sim::Effect>& base) {
   const sim::EffectSpec& spec = sim::effect_spec(effect_catalogue_of(measured.plant.model, "audit"), start.name);
-  ReplayResiduals residuals{measured, measured_y, start, spec.parameters, estimation, {}, base};
-  residuals.inverse_spread =
-      nrmse(measured_y, Eigen::MatrixXd::Zero(measured_y.rows(), measured_y.cols()), estimation).cwiseInverse();
-  const int k = int(spec.parameters.size());
-  Eigen::VectorXd theta(k);
-  ident::NonlinearLeastSquares problem;
-  problem.residuals = [&residuals](const double* x, double* r, double*) { return residuals(x, r); };
-  problem.residual_count = int(estimation.size() * measured_y.cols());
-  problem.differentiation = ident::Differentiation::central;
-  problem.lower.resize(k);
-  problem.upper.resize(k);
-  for (int i = 0; i < k; ++i) {
+  auto at = [&](const double* theta) {
+    sim::Effect e = start;
+    for (std::size_t i = 0; i < spec.parameters.size(); ++i)
+      e.parameters[spec.parameters[i].name] = theta[i] * spec.parameters[i].scale;
+    return e;
+  };
+  const auto k = Eigen::Index(spec.parameters.size());
+  Eigen::VectorXd theta(k), lower(k), upper(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
     const auto& p = spec.parameters[std::size_t(i)];
-    double lower = p.lower / p.scale;
-    if (p.unit == "s" && p.lower == 0.0) lower = kSmallestLag;
-    problem.lower(i) = lower;
-    problem.upper(i) = p.upper / p.scale;
-    theta(i) = std::clamp(start.at(p.name) / p.scale, lower, p.upper / p.scale);
+    lower(i) = p.unit == "s" && p.lower == 0.0 ? kSmallestLag : p.lower / p.scale;
+    upper(i) = p.upper / p.scale;
+    theta(i) = start.at(p.name) / p.scale;
   }
-  ident::NonlinearLeastSquaresOptions solver;
-  solver.max_iterations = options.max_iterations;
-  const ident::NonlinearLeastSquaresSolution solution = ident::solve_nonlinear_least_squares(problem, theta, solver);
-
-  EffectFit fit;
-  fit.effect = residuals.at(solution.x.data());
-  fit.cost = 2.0 * solution.final_cost;  // the solver reports half the sum of squares
-  fit.iterations = solution.iterations;
-  fit.converged = solution.termination == ident::Termination::converged;
+  const ScaledFit fit = fit_scaled(
+      measured_y, estimation,
+      [&](const double* x) {
+        std::vector<sim::Effect> effects = base;
+        effects.push_back(at(x));
+        return replay_outputs(measured, effects, estimation.end);
+      },
+      theta, lower, upper, options);
   if (!std::isfinite(fit.cost))
     throw Error("audit: the fit of " + start.name + " could not start from its initial values");
-  return fit;
+  return {at(fit.theta.data()), fit.cost, fit.iterations, fit.converged};
 }
 
 }  // namespace ambid::diag

@@ -23,6 +23,21 @@ std::vector<std::string> independent_effect_names();
 // (drawn sign: 1 +- 0.1 multiple).
 sim::Effect effect_at(const std::string& name, double multiple, std::uint64_t seed);
 
+// A record with `name` hidden at a moderate size (drawn from `seed`: where a record shows it above
+// the noise), under the controller `controller_index` (cycled) of those the effect leaves stable
+// (a mode at 450 Hz with coupling 0.3 destabilises the observer loop, eddy currents of 1-2e-4 s
+// the lead-lag one); a mode at 600-800 Hz on 2 s at 2 V, the two lags on 2 s. `truth`: the effect.
+test_support::EffectRecordOptions hidden_effect_record(const std::string& name, std::uint64_t seed,
+                                                       std::uint64_t controller_index, sim::Effect& truth);
+
+// Mismatches outside the catalogue, drawn from `seed` under controller `controller_index`
+// (cycled): "coil_inductance" (one coil's Ls 5-10 % off), "sensor_offset" (3-6 um),
+// "second_mode" (modes at 600-800 and 1400-1800 Hz, coupling 0.3; 2 s at 2 V), "gain_drift"
+// (one amplifier's gain +-10-20 % over 0.3-0.6 s). `what` describes the draw.
+const std::vector<std::string>& out_of_catalogue_kinds();
+test_support::EffectRecordOptions out_of_catalogue_record(const std::string& kind, std::uint64_t seed,
+                                                          std::uint64_t controller_index, std::string& what);
+
 // The size of an effect relative to its catalogue scale (|switching parameter| / scale).
 double relative_size(const sim::Effect& effect);
 
