@@ -34,13 +34,16 @@ std::string seconds(double s) {
 void AlertPolicy::validate() const {
   if (!(error_fraction > 0.0) || !std::isfinite(error_fraction))
     throw Error("alert policy: error_fraction must be positive and finite, got " + std::to_string(error_fraction));
+  if (!(warn_fraction >= 0.0 && warn_fraction < error_fraction))
+    throw Error("alert policy: warn_fraction must be at least 0 and below error_fraction, got " +
+                std::to_string(warn_fraction));
   if (persist_windows < 1) throw Error("alert policy: persist_windows must be at least 1");
   if (!(stale_timeout > 0.0) || !std::isfinite(stale_timeout))
     throw Error("alert policy: stale_timeout must be positive and finite, got " + std::to_string(stale_timeout));
 }
 
 Level AlertPolicy::level(const SeriesStatus& status, Level episode) const {
-  if (status.learning || status.change == Change::none) return Level::ok;
+  if (status.learning || status.change == Change::none || std::abs(status.relative) < warn_fraction) return Level::ok;
   const bool large = std::abs(status.relative) + kErrorMargin * status.relative_sigma >= error_fraction;
   const bool persistent = status.change == Change::step && status.step_windows >= persist_windows;
   const Level now = large || persistent ? Level::error : Level::warn;

@@ -8,6 +8,10 @@
 // level of a step is the mean of the windows since it began: without a margin a +10 % fault
 // could stay a WARN until persist_windows had passed (at the stack's 0.5 s windows, 20 windows
 // are 10 s of plant time).
+//   OK     also a change smaller than warn_fraction of the baseline (|relative| <
+//          warn_fraction): a parameter estimated to 1e-5 shows steps of a few 0.01 % as many
+//          sigmas (the issue 18 soak saw "kw1 ... 0.03 % above baseline" after excitation
+//          changes), which no fault of a bearing is
 //   STALE  no estimate of the parameter for longer than stale_timeout seconds
 // Within one episode (from leaving OK until back to OK) the level never falls from ERROR to
 // WARN, so an alert does not flap while a changed value hovers near error_fraction.
@@ -23,9 +27,11 @@ namespace ambid::diag {
 
 struct AlertPolicy {
   double error_fraction = 0.10;
+  double warn_fraction = 0.005;  // smaller changes are not alerted
   std::size_t persist_windows = 100;
   double stale_timeout = 30.0;  // seconds
-  // Throws Error unless error_fraction > 0, persist_windows >= 1, stale_timeout > 0, finite.
+  // Throws Error unless error_fraction > 0, 0 <= warn_fraction < error_fraction,
+  // persist_windows >= 1, stale_timeout > 0, all finite.
   void validate() const;
 
   // Level of a series that is not stale; `episode` is the highest level since it was last OK.

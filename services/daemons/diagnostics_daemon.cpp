@@ -38,14 +38,16 @@ struct DiagnosticsConfig {
 constexpr double kDay = 86400.0;
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
-  reject_unknown_keys(j, "diagnostics config",
-                      {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "stale_timeout",
-                       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
+  reject_unknown_keys(
+      j, "diagnostics config",
+      {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "warn_fraction", "stale_timeout",
+       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
   c.engine.policy.persist_windows = std::size_t(config_value(j, "persist_windows", 100));
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
+  c.engine.policy.warn_fraction = config_value(j, "warn_fraction", c.engine.policy.warn_fraction);
   c.engine.policy.stale_timeout = config_value(j, "stale_timeout", c.engine.policy.stale_timeout);
   c.silence = config_value(j, "silence", c.silence);
   // Per-window estimates for a week, then hourly aggregates for a year (README: disk use).

@@ -20,7 +20,8 @@
 // Config (JSON, every key optional):
 //   {"plants": ["bearing-1", ...] | "all" (default: the --plant-id), "store": "ambid-trend.sqlite",
 //    "learning_windows": 50, "persist_windows": 100,
-//    "error_fraction": 0.10, "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
+//    "error_fraction": 0.10, "warn_fraction": 0.005 (smaller changes are not alerted),
+//    "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
 //    retention of the trend store (diag::RetentionPolicy): "keep_windows_days": 7 (per-window
 //    estimates, then aggregated), "aggregate_bucket": 3600 (s per aggregate), "keep_days": 365,
 //    "retention_period": 600 (s of plant time between two passes; the first pass runs at the

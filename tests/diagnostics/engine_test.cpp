@@ -180,10 +180,13 @@ TEST(DiagnosticsEngine, RepeatedEstimatesOfTheSameDataAreStoredButNotNewEvidence
 }
 
 // Issue 18 soak: "kw1 amplifier_gain 0.0 % ... " alerts. An amplifier gain is estimated to
-// 1e-5 here, so a +0.03 % step is 30 sigma and alarms; the message says how large it is.
+// 1e-5 here, so a +0.03 % step is 30 sigma and alarms once the warn floor is off; the message
+// says how large it is.
 TEST(DiagnosticsEngine, MessageOfASmallStepOfAPreciseParameterNamesItsSize) {
   TrendStore store(fresh_store_path("small_step"));
-  DiagnosticsEngine engine(store);
+  EngineConfig config;
+  config.policy.warn_fraction = 0.0;
+  DiagnosticsEngine engine(store, config);
   SyntheticPlant plant("bearing-A", 28, 1e-5);
   plant.change = [](const std::string& p, std::size_t n) { return p == "kw1" && n >= kChangeAt ? 3e-4 : 0.0; };
   std::string message;
@@ -191,6 +194,30 @@ TEST(DiagnosticsEngine, MessageOfASmallStepOfAPreciseParameterNamesItsSize) {
     if (a.parameter == "kw1" && message.empty()) message = a.message;
   // 0.03 % +- 1 sigma of one window (0.001 %), to two significant digits.
   EXPECT_TRUE(std::regex_search(message, std::regex(R"( 0\.0(2[7-9]|3|3[0-3]) % above baseline \(step\))"))) << message;
+}
+
+// The warn floor (warn_fraction, default 0.5 %): a parameter estimated to 1e-5 steps by
+// 0.3 % (300 sigma) and raises nothing; by 0.8 % it raises a WARN that names the 0.8 %.
+TEST(DiagnosticsEngine, ChangesBelowWarnFractionAreNotAlertedLargerOnesAre) {
+  for (const double step : {0.003, 0.008}) {
+    TrendStore store(fresh_store_path("warn_floor"));
+    DiagnosticsEngine engine(store);
+    SyntheticPlant plant("bearing-A", 29, 1e-5);
+    plant.change = [&](const std::string& p, std::size_t n) { return p == "kw1" && n >= kChangeAt ? step : 0.0; };
+    std::vector<Alert> alerts = engine.process(plant.windows(0, kChangeAt + 20));
+    if (step < 0.005) {
+      for (const Alert& a : alerts) ADD_FAILURE() << to_json(a).dump();
+      EXPECT_EQ(store.history("bearing-A", "kw1").size(), kChangeAt + 20);  // stored all the same
+    } else {
+      ASSERT_EQ(alerts.size(), 1u);
+      EXPECT_EQ(alerts[0].parameter, "kw1");
+      EXPECT_EQ(alerts[0].level, Level::warn);
+      EXPECT_EQ(alerts[0].message, "amplifier 1 gain 0.8 % above baseline (step)");
+    }
+  }
+  EngineConfig config;
+  config.policy.warn_fraction = 0.1;  // not below error_fraction
+  EXPECT_THROW(config.validate(), Error);
 }
 
 TEST(DiagnosticsEngine, CommonModeOfForceFactorsIsSensorGain) {

@@ -285,6 +285,14 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     EXPECT_THAT(r.output, HasSubstr("missing.json: no such file"));
   }
   {
+    // A directory named like an experiment (issue 18: it was an internal error, exit 2).
+    fs::create_directories(dir / "folder.json");
+    const auto r = run_ambid("diagnose" + joined(files) + " " + (dir / "folder.json").string() + out);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_THAT(r.output, HasSubstr("folder.json"));
+    EXPECT_THAT(r.output, HasSubstr("Is a directory"));
+  }
+  {
     const auto r = run_ambid("diagnose" + joined(files) + " --baseline 6" + out);
     EXPECT_NE(r.status, 0);
     EXPECT_THAT(r.output, HasSubstr("--baseline 6 leaves nothing to diagnose"));

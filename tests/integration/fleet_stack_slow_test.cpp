@@ -1,9 +1,9 @@
 // Many bearings, one service (issue 14): eight simulated bearings on one domain, each its own
-// plant daemon; two identifier processes dividing the fleet by their "plants" lists (four each)
-// and one diagnostics daemon serving "all". Every bearing is identified (R1 near its truth in
-// the trend store, which names the plant of each estimate); a coil fault on one bearing alerts
-// that bearing only. Domain 222; 30-90 s (slow).
-// A plant id served twice: fleet_stack_test.cpp.
+// plant daemon; two identifier processes dividing the fleet by their "plants" lists (four each,
+// one on Cyclone DDS, one on Fast DDS, each reading the other's models: deploy/dds/
+// cyclone-loopback.xml says what that needed) and one diagnostics daemon serving "all". Every bearing is identified (R1
+// near its truth in the trend store, which names the plant of each estimate); a coil fault on one bearing alerts that
+// bearing only. Domain 222; 30-90 s (slow). A plant id served twice: fleet_stack_test.cpp.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -36,7 +36,7 @@ TEST(FleetStack, EightBearingsTwoIdentifiersOneDiagnosticsFaultAlertsOnlyItsBear
       << R"(", "learning_windows": 40, "persist_windows": 20, "stale_timeout": 2.0, "silence": 6.0})";
   stack.start("diagnostics");
   start_identifier(stack, "identifier-a", plant_list(1, 4), domain, "cyclone");
-  start_identifier(stack, "identifier-b", plant_list(5, 8), domain, "cyclone");
+  start_identifier(stack, "identifier-b", plant_list(5, 8), domain, "fastdds");
   for (int k = 1; k <= kBearings; ++k) start_plant(stack, k, domain);
 
   // Every bearing identified: its baseline learned (at most 90 s), the mean of its stored R1
@@ -76,14 +76,17 @@ TEST(FleetStack, EightBearingsTwoIdentifiersOneDiagnosticsFaultAlertsOnlyItsBear
   ASSERT_EQ(error.status, 0) << error.output << stack.log("diagnostics");
   EXPECT_THAT(error.output, HasSubstr("ERROR  bearing-6  R1  coil_resistance (channel 1)"));
   std::this_thread::sleep_for(std::chrono::seconds(2));
-  // Every fault alert (WARN, ERROR) of the fleet is about bearing-6. STALE elsewhere is not a
-  // fault: on this shared machine at load ~20 an identifier can fall behind by more than the
-  // 2 s stale timeout (it did, for three bearings of both identifiers in one run).
+  // Every fault alert (WARN, ERROR) of the fleet is about bearing-6. STALE and history_gap
+  // elsewhere are no fault: on this shared machine at load ~20 an identifier can fall behind by
+  // more than the 2 s stale timeout (it did, for three bearings of both identifiers in one run)
+  // and miss samples, which it then reports (WARN samples history_gap, 0.55 s on the four
+  // bearings of one identifier in one run).
   const CommandResult all = stack.ambid("alerts --all-plants --wait 2");
   std::istringstream lines(all.output);
   int raised = 0;
   for (std::string line; std::getline(lines, line);) {
     if (line.find("  WARN  ") == std::string::npos && line.find("  ERROR  ") == std::string::npos) continue;
+    if (line.find("  history_gap  ") != std::string::npos) continue;
     ++raised;
     EXPECT_THAT(line, HasSubstr("  bearing-6  ")) << all.output;
   }

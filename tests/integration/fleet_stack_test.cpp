@@ -1,6 +1,6 @@
 // A plant id served by two identifiers (issue 14): fleets are divided by the identifiers'
 // "plants" lists; a plant listed in two of them is reported by both (log and Health), never
-// silently served twice. Domain 223.
+// silently served twice, also with the identifiers on different vendors. Domain 223.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ TEST(FleetStack, APlantServedByTwoIdentifiersIsReported) {
   constexpr int domain = 223;
   Stack stack("fleet_twice", domain);
   start_identifier(stack, "identifier-a", plant_list(1, 2), domain, "cyclone");
-  start_identifier(stack, "identifier-b", plant_list(2, 3), domain, "cyclone");
+  start_identifier(stack, "identifier-b", plant_list(2, 3), domain, "fastdds");
   for (int k = 1; k <= 3; ++k) start_plant(stack, k, domain);
   std::this_thread::sleep_for(std::chrono::seconds(6));
   for (const char* name : {"identifier-a", "identifier-b"}) {

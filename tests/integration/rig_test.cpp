@@ -50,6 +50,22 @@ bool wait_for_log(const Stack& stack, const std::string& name, const std::string
 
 std::string address(int port) { return "127.0.0.1:" + std::to_string(port); }
 
+// The plant daemon's log lines about rejected datagrams of the rig at `port`. Others do not
+// count: the gateway's socket has an ephemeral port, which the domain's RTPS traffic can reach
+// too (a port a participant used before), and those datagrams are rejected "(from ADDRESS)" of
+// their sender or as "not the rig".
+std::vector<std::string> rig_rejections(const std::string& log, int port) {
+  std::vector<std::string> found;
+  std::istringstream lines(log);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find("rejected") == std::string::npos || line.find("not the rig") != std::string::npos) continue;
+    const auto from = line.rfind("(from ");
+    if (from == std::string::npos || line.compare(from, std::string::npos, "(from " + address(port) + ")") == 0)
+      found.push_back(line);
+  }
+  return found;
+}
+
 void start_emulator(Stack& stack, int port, const std::vector<std::string>& extra = {}) {
   std::vector<std::string> args{"rig-emulator", "--listen", address(port), "--scenario", nominal, "--speed", "10"};
   args.insert(args.end(), extra.begin(), extra.end());
@@ -181,7 +197,8 @@ TEST(Rig, KilledBoardIsAnnouncedSilentAndPickedUpWhenItReturns) {
   EXPECT_THAT(status.output, HasSubstr("WARN rig 127.0.0.1:19182 silent"));  // the plant's Health
   start_emulator(stack, 19182);
   ASSERT_TRUE(wait_for_log(stack, "plant", "rig 127.0.0.1:19182 streaming again", 5s)) << stack.log("plant");
-  EXPECT_THAT(stack.log("plant"), Not(HasSubstr("rejected")));  // the restarted board counts from 0: accepted
+  // The restarted board counts from 0: accepted.
+  EXPECT_THAT(rig_rejections(stack.log("plant"), 19182), ::testing::IsEmpty()) << stack.log("plant");
   const CommandResult r = stack.ambid("record --out " + (stack.dir() / "again").string() + " --duration 0.2");
   EXPECT_EQ(r.status, 0) << r.output;
 }

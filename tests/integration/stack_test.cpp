@@ -173,9 +173,17 @@ TEST(Stack, BadSourceCommandIsRefusedAndThePlantKeepsRunning) {
   const CommandResult diverging = stack.ambid("source set sim " + (stack.dir() / "diverging.json").string());
   EXPECT_EQ(diverging.status, 1) << diverging.output;
   EXPECT_THAT(diverging.output, HasSubstr("refused the source"));
+  // A recording whose sidecar nests 30 000 levels deep (issue 18: it cost the plant daemon 1 GB
+  // and 4 s): refused before parsing, naming the limit.
+  std::ofstream(stack.dir() / "deep.csv") << "t,x,u1,u2,r1,r2\n0,0,0,0,0,0\n";
+  std::ofstream(stack.dir() / "deep.json")
+      << R"({"name": "deep", "deep": )" << std::string(30000, '[') << std::string(30000, ']') << "}";
+  const CommandResult deep = stack.ambid("source set replay " + (stack.dir() / "deep").string());
+  EXPECT_EQ(deep.status, 1) << deep.output;
+  EXPECT_THAT(deep.output, HasSubstr("JSON nested deeper than 64 levels")) << deep.output;
   const CommandResult status = stack.ambid("status --wait 2");
   EXPECT_THAT(status.output, HasSubstr("quiet-bearing.json"));
-  EXPECT_THAT(status.output, HasSubstr("rejected 4"));
+  EXPECT_THAT(status.output, HasSubstr("rejected 5"));
   // Only the plant runs: the stack's other roles are listed as lost (issue 18).
   EXPECT_EQ(status.status, 4) << status.output;
   EXPECT_THAT(status.output, HasSubstr("identifier (expected): LOST"));
