@@ -41,7 +41,8 @@ struct ReplayResiduals {
     }
     const Eigen::Index n = estimation.size();
     Eigen::Map<Eigen::MatrixXd> r(residuals, n, y.cols());
-    r = (measured_y.middleRows(estimation.begin, n) - y.middleRows(estimation.begin, n)) * inverse_spread.asDiagonal();
+    // Samples where a controller clamp acted (estimation.left_out) contribute a zero residual.
+    r = estimation.kept_rows(measured_y.topRows(estimation.end) - y) * inverse_spread.asDiagonal();
     return r.allFinite();
   }
 };
