@@ -63,7 +63,10 @@
 // segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
 // "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
 // excitation_rms, log_ratio, log_ratio_se}], z, dependent}; "clamped_samples" {count,
-// left_out_of}: the samples where a controller clamp acted, which no NRMSE scores.
+// estimation, validation, left_out_of}: the samples where a controller clamp acted (in the
+// record and in each segment), which no fit, score or statistic counts (NRMSE, the fits'
+// residuals, z, the residual check's windows, the correlation with r, the spectra, the FRF
+// ratio's and the amplitude dependence's Welch segments).
 #include <cstddef>
 #include <functional>
 #include <string>

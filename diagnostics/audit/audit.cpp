@@ -24,6 +24,20 @@ struct Candidate {
 
 double total(const Eigen::VectorXd& per_output) { return per_output.mean(); }
 
+// Per row of `segment`: a controller clamp acted there (empty when none did anywhere).
+std::vector<bool> left_out_rows(const Segment& segment) {
+  if (segment.left_out.empty()) return {};
+  return std::vector<bool>(segment.left_out.begin() + segment.begin, segment.left_out.begin() + segment.end);
+}
+
+// The residual check of `residual` (whole record, deviations) on the validation segment,
+// leaving out the windows that hold a clamped sample.
+ResidualCheck validation_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& r_dev, const AuditResult& r,
+                               double alpha) {
+  return residual_check(residual.middleRows(r.validation.begin, r.validation.size()),
+                        r_dev.middleRows(r.validation.begin, r.validation.size()), alpha, left_out_rows(r.validation));
+}
+
 // The strongest line over the outputs' residuals, each normalised by its measured spread.
 Line residual_line(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& measured, double dt, double f_lo,
                    double f_hi) {
@@ -103,8 +117,9 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   const Eigen::MatrixXd r_dev = measured.r_deviation();
 
   // Screening.
-  const Eigen::MatrixXd est_residual = residual.topRows(r.estimation.end);
-  const Eigen::MatrixXd est_measured = r.measured.topRows(r.estimation.end);
+  // Zero where a controller clamp acted: the line search sums over the kept samples only.
+  const Eigen::MatrixXd est_residual = r.estimation.kept_rows(residual);
+  const Eigen::MatrixXd est_measured = r.estimation.kept_rows(r.measured);
   const double nyquist = 0.5 / dt;
   const double harmonic_f = residual_line(est_residual, est_measured, dt, 1.0, 0.9 * nyquist).frequency;
   // A mode shows as a resonance in the position residual: its three strongest peaks join the grid.
@@ -169,8 +184,7 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
     f.test = improvement_test(r.measured, base_loop.y, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
     f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
-    f.residual = residual_check((r.measured - loop.y).middleRows(r.validation.begin, r.validation.size()),
-                                r_dev.middleRows(r.validation.begin, r.validation.size()), options.residual_alpha);
+    f.residual = validation_check(r.measured - loop.y, r_dev, r, options.residual_alpha);
     scored.push_back({std::move(f), std::move(loop)});
   }
   std::stable_sort(scored.begin(), scored.end(),
@@ -228,14 +242,15 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.baseline_total = total(r.baseline_nrmse);
   const Eigen::MatrixXd residual = r.measured - r.nominal;
   const Eigen::MatrixXd r_dev = measured.r_deviation();
+  const Segment record{0, N, r.estimation.left_out};
+  const Eigen::MatrixXd kept_residual = record.kept_rows(residual);  // zero where a clamp acted
   r.excitation_correlation.resize(residual.cols(), r_dev.cols());
   for (Eigen::Index j = 0; j < residual.cols(); ++j)
     for (Eigen::Index i = 0; i < r_dev.cols(); ++i)
-      r.excitation_correlation(j, i) = excitation_correlation(residual.col(j), r_dev.col(i), 50);
+      r.excitation_correlation(j, i) = excitation_correlation(kept_residual.col(j), r_dev.col(i), 50);
   r.false_acceptance = options.false_acceptance;
   r.residual_alpha = options.residual_alpha;
-  r.nominal_check = residual_check(residual.middleRows(r.validation.begin, r.validation.size()),
-                                   r_dev.middleRows(r.validation.begin, r.validation.size()), options.residual_alpha);
+  r.nominal_check = validation_check(residual, r_dev, r, options.residual_alpha);
 
   // Sequential acceptance (forward selection): each round searches on top of the effects taken
   // so far and takes the significant finding of best score; the search goes on while a round
@@ -293,11 +308,10 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   const ReplayedLoop& extended = r.extended_effects.empty() ? nominal : current;
   r.extended = extended.y;
   const Eigen::Index L = std::min<Eigen::Index>(512, r.validation.size());
-  r.residual_nominal = welch_spectrum(residual.middleRows(r.validation.begin, r.validation.size()), dt, L);
-  r.residual_extended =
-      welch_spectrum((r.measured - r.extended).middleRows(r.validation.begin, r.validation.size()), dt, L);
+  r.residual_nominal = welch_spectrum(r.validation.kept_rows(residual), dt, L);
+  r.residual_extended = welch_spectrum(r.validation.kept_rows(r.measured - r.extended), dt, L);
   r.frfs = audit_frfs(measured, nominal, extended, r.validation);
-  r.amplitude = amplitude_dependence(measured, nominal);
+  r.amplitude = amplitude_dependence(measured, nominal, record.left_out);
   return r;
 }
 
@@ -432,7 +446,13 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
           {"residual_excitation_correlation", correlation},
           {"amplitude_dependence", amplitude},
           {"clamped_samples",
-           {{"count", r.clamped_samples}, {"left_out_of", "every NRMSE (baseline, screening, fits, findings)"}}},
+           {{"count", r.clamped_samples},
+            {"estimation", r.estimation.size() - Eigen::Index(r.estimation.kept().sum())},
+            {"validation", r.validation.size() - Eigen::Index(r.validation.kept().sum())},
+            {"left_out_of",
+             "every statistic: NRMSE (baseline, screening, fits, findings), the fits' residuals, the improvement z, "
+             "the residual check (windows holding one), the residual's correlation with r and its spectra (set to "
+             "zero there), the FRF ratio and amplitude dependence (Welch segments holding one)"}}},
           {"acceptance",
            {{"rule", "validation improvement z above the Bonferroni threshold over the fitted findings"},
             {"false_acceptance_probability", r.false_acceptance},

@@ -26,6 +26,7 @@ AmplitudePart analyse_part(const Experiment& measured, const ReplayedLoop& nomin
   ident::WelchFrfOptions w;
   w.sample_time = measured.sample_time;
   w.segment_samples = o.segment_samples;
+  if (!s.left_out.empty()) w.left_out.assign(s.left_out.begin() + s.begin, s.left_out.begin() + s.end);
   const Eigen::MatrixXd r = measured.r_deviation().middleRows(s.begin, s.size());
   const ident::WelchFrf m = ident::estimate_welch_frf(r, measured.u_deviation().middleRows(s.begin, s.size()),
                                                       measured.y_deviation().middleRows(s.begin, s.size()), w);
@@ -55,10 +56,13 @@ AmplitudePart analyse_part(const Experiment& measured, const ReplayedLoop& nomin
 }  // namespace
 
 AmplitudeDependence amplitude_dependence(const Experiment& measured, const ReplayedLoop& nominal,
-                                         const AmplitudeOptions& options) {
+                                         const std::vector<bool>& left_out, const AmplitudeOptions& options) {
   const Eigen::Index N = measured.samples();
-  if (nominal.y.rows() != N || nominal.u.rows() != N || options.parts < 2)
-    throw Error("audit: amplitude dependence needs the nominal replay of the whole record and at least 2 parts");
+  if (nominal.y.rows() != N || nominal.u.rows() != N || options.parts < 2 ||
+      (!left_out.empty() && std::ssize(left_out) != N))
+    throw Error(
+        "audit: amplitude dependence needs the nominal replay of the whole record (and a mask of its samples) and at "
+        "least 2 parts");
   AmplitudeDependence out;
   const Eigen::Index length = N / options.parts;
   if (length < 3 * options.segment_samples) {
@@ -68,7 +72,7 @@ AmplitudeDependence amplitude_dependence(const Experiment& measured, const Repla
   }
   try {
     for (int p = 0; p < options.parts; ++p)
-      out.parts.push_back(analyse_part(measured, nominal, {p * length, (p + 1) * length}, options));
+      out.parts.push_back(analyse_part(measured, nominal, {p * length, (p + 1) * length, left_out}, options));
   } catch (const Error& e) {
     out.parts.clear();
     out.reason = std::string("a part's frequency response cannot be estimated: ") + e.what();

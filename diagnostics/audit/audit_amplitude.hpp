@@ -52,9 +52,11 @@ struct AmplitudeOptions {
   double z_threshold = 4.0;             // over all pairs: beyond what the lines' scatter reaches
 };
 
-// Error for inconsistent sizes; not determinable when a part is shorter than three Welch
-// windows or its FRF cannot be estimated (a singular line).
+// `left_out` (per sample of the record, or empty): where a controller clamp acted; the Welch
+// windows holding one are skipped. Error for inconsistent sizes; not determinable when a part
+// is shorter than three Welch windows or its FRF cannot be estimated (a singular line, or too
+// few windows without a clamp).
 AmplitudeDependence amplitude_dependence(const Experiment& measured, const ReplayedLoop& nominal,
-                                         const AmplitudeOptions& options = {});
+                                         const std::vector<bool>& left_out = {}, const AmplitudeOptions& options = {});
 
 }  // namespace ambid::diag

@@ -45,7 +45,9 @@ ScaledFit fit_scaled(const Eigen::MatrixXd& measured_y, const Segment& estimatio
       return false;  // the rotor touched the bearing, or an invalid parameter: not a step to take
     }
     Eigen::Map<Eigen::MatrixXd> r(residuals, n, y.cols());
-    r = (measured_y.middleRows(estimation.begin, n) - y.middleRows(estimation.begin, n)) * inverse_spread.asDiagonal();
+    // Samples where a controller clamp acted (estimation.left_out) contribute a zero residual.
+    r = estimation.kept_rows(measured_y.topRows(estimation.end) - y.topRows(estimation.end)) *
+        inverse_spread.asDiagonal();
     return r.allFinite();
   };
   problem.residual_count = int(n * measured_y.cols());

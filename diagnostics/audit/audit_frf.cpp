@@ -34,6 +34,8 @@ AuditFrfs audit_frfs(const Experiment& measured, const ReplayedLoop& nominal, co
   ident::WelchFrfOptions o;
   o.sample_time = measured.sample_time;
   o.segment_samples = std::min<Eigen::Index>(1024, segment.size() / 3);
+  if (!segment.left_out.empty())  // Welch skips the segments holding a sample where a clamp acted
+    o.left_out.assign(segment.left_out.begin() + segment.begin, segment.left_out.begin() + segment.end);
   const Eigen::MatrixXd r = measured.r_deviation().middleRows(segment.begin, segment.size());
   auto estimate = [&](const Eigen::MatrixXd& u, const Eigen::MatrixXd& y) {
     return ident::estimate_welch_frf(r, u.middleRows(segment.begin, segment.size()),

@@ -18,7 +18,8 @@ struct AuditFrfs {
   ident::Frf loop_measured, loop_nominal, loop_extended;
 };
 
-// On `segment` of the record (`measured` keeps its asymptotic variance); the excited band is the lines where every
+// On `segment` of the record, without the Welch segments that hold a sample the segment
+// leaves out (`measured` keeps its asymptotic variance); the excited band is the lines where every
 // measured plant input is coherent with the excitation (multiple coherence >= min_coherence). All empty when the
 // segment is too short for Welch averaging or no line is excited.
 AuditFrfs audit_frfs(const Experiment& measured, const ReplayedLoop& nominal, const ReplayedLoop& extended,

@@ -64,9 +64,12 @@ double matched_mode_frequency(const Eigen::VectorXd& residual_x, const Eigen::Ve
   Eigen::VectorXd acceleration = Eigen::VectorXd::Zero(n);
   for (Eigen::Index k = 1; k + 1 < n; ++k)
     acceleration[k] = (nominal_x[k + 1] - 2.0 * nominal_x[k] + nominal_x[k - 1]) / (sample_time * sample_time);
-  const Eigen::VectorXd raw = residual_x.segment(estimation.begin, estimation.size());
+  // Zero where a controller clamp acted (before and after whitening): the match sums over the
+  // kept samples.
+  const Eigen::VectorXd kept = estimation.kept();
+  const Eigen::VectorXd raw = estimation.kept_rows(residual_x);
   const Eigen::VectorXd whitening = whitening_filter(raw);
-  const Eigen::VectorXd e = apply_fir(whitening, raw);
+  const Eigen::VectorXd e = apply_fir(whitening, raw).cwiseProduct(kept);
   const double highest = kHighestShare * 0.5 / sample_time;
   double best_f = kLowest, best_explained = -1.0;
   for (double zeta : kMatchedZetas)

@@ -1,6 +1,7 @@
 #include "diagnostics/audit/audit_replay.hpp"
 
 #include <memory>
+#include <string>
 
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_rounding.hpp"
@@ -48,14 +49,26 @@ Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim
   return replay_loop(measured, effects, samples).y;
 }
 
+Eigen::VectorXd Segment::kept() const {
+  Eigen::VectorXd k = Eigen::VectorXd::Ones(size());
+  for (Eigen::Index i = begin; i < end; ++i)
+    if (left_out_at(i)) k(i - begin) = 0.0;
+  return k;
+}
+
+Eigen::MatrixXd Segment::kept_rows(const Eigen::MatrixXd& x) const {
+  if (begin < 0 || x.rows() < end)
+    throw Error("audit: segment [" + std::to_string(begin) + ", " + std::to_string(end) +
+                ") does not fit a signal of " + std::to_string(x.rows()) + " samples");
+  return kept().asDiagonal() * x.middleRows(begin, size());
+}
+
 Eigen::VectorXd nrmse(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& model, const Segment& segment) {
   if (segment.begin < 0 || segment.size() < 2 || measured.rows() < segment.end || model.rows() < segment.end ||
       measured.cols() != model.cols())
     throw Error("audit: NRMSE segment [" + std::to_string(segment.begin) + ", " + std::to_string(segment.end) +
                 ") does not fit the signals");
-  Eigen::VectorXd kept = Eigen::VectorXd::Ones(segment.size());  // 0 where a sample is left out
-  for (Eigen::Index k = segment.begin; k < std::min<Eigen::Index>(segment.end, std::ssize(segment.left_out)); ++k)
-    if (segment.left_out[std::size_t(k)]) kept(k - segment.begin) = 0.0;
+  const Eigen::VectorXd kept = segment.kept();  // 0 where a sample is left out
   if (kept.sum() < 2.0) throw InsufficientData("audit: fewer than two samples without a controller clamp to score");
   const Eigen::MatrixXd m = measured.middleRows(segment.begin, segment.size());
   const Eigen::MatrixXd e = (m - model.middleRows(segment.begin, segment.size())).array().colwise() * kept.array();

@@ -2,6 +2,8 @@
 // The audit's view of a model: simulated in closed loop with the recorded controller and
 // driven by the recorded excitation r (experiment-format.md, audit report), compared with the
 // measurement by the contract's NRMSE.
+#include <cstddef>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,6 +22,12 @@ struct Segment {
   // scores leave it out. Empty: none.
   std::vector<bool> left_out{};
   Eigen::Index size() const { return end - begin; }
+  bool left_out_at(Eigen::Index k) const { return k < std::ssize(left_out) && left_out[std::size_t(k)]; }
+  // Per row of the segment: 1, or 0 where the sample is left out.
+  Eigen::VectorXd kept() const;
+  // The segment's rows of `x` (at least `end` rows), the left-out ones set to zero: a sum of
+  // products or squares over them then leaves those samples out.
+  Eigen::MatrixXd kept_rows(const Eigen::MatrixXd& x) const;
 };
 
 // The nominal model of the sidecar's plant family with `effects` of its catalogue (the family's

@@ -29,12 +29,16 @@ double scaled_chi_square_z(double t, double mean, double variance) {
 
 }  // namespace
 
-ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha) {
+ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha,
+                             const std::vector<bool>& left_out) {
   if (!(alpha > 0.0 && alpha < 1.0))
     throw Error("audit: residual check probability must be in (0, 1), got " + std::to_string(alpha));
   if (residual.rows() != excitation.rows() || excitation.cols() < 1)
     throw Error("audit: residual check needs the excitation over the same samples as the residual");
   const Eigen::Index N = residual.rows(), q = residual.cols(), p = excitation.cols();
+  if (!left_out.empty() && std::ssize(left_out) != N)
+    throw Error("audit: residual check mask of " + std::to_string(left_out.size()) + " entries for " +
+                std::to_string(N) + " samples");
   ResidualCheck c;
   c.coherence_mean = c.coherence_z = Eigen::VectorXd::Zero(q);
   c.coherence_p = Eigen::VectorXd::Ones(q);
@@ -48,7 +52,18 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
     c.reason = std::to_string(N) + " samples hold fewer than " + std::to_string(kMinWindows) + " windows of 64";
     return c;
   }
-  const Eigen::Index K = N / L, bins = L / 2;  // bins 1 .. L/2 - 1 are used
+  // Windows holding a sample where a controller clamp acted are left out.
+  std::vector<Eigen::Index> starts;
+  for (Eigen::Index m = 0; m < N / L; ++m)
+    if (left_out.empty() ||
+        std::find(left_out.begin() + m * L, left_out.begin() + (m + 1) * L, true) == left_out.begin() + (m + 1) * L)
+      starts.push_back(m * L);
+  const Eigen::Index K = std::ssize(starts), bins = L / 2;  // bins 1 .. L/2 - 1 are used
+  if (K < kMinWindows || K <= p) {
+    c.reason = std::to_string(N / L - K) + " of the " + std::to_string(N / L) + " windows of " + std::to_string(L) +
+               " hold a sample where a controller clamp acted; fewer than " + std::to_string(kMinWindows) + " remain";
+    return c;
+  }
   c.determinable = true;
   c.window = L;
   c.windows = K;
@@ -61,9 +76,9 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
   Eigen::VectorXd hann(L);
   for (Eigen::Index k = 0; k < L; ++k) hann[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * double(k) / double(L));
   std::vector<Eigen::MatrixXcd> spectra;
-  for (Eigen::Index m = 0; m < K; ++m) {
+  for (const Eigen::Index start : starts) {
     Eigen::MatrixXd block(L, q + p);
-    block << residual.middleRows(m * L, L), excitation.middleRows(m * L, L);
+    block << residual.middleRows(start, L), excitation.middleRows(start, L);
     block.rowwise() -= block.colwise().mean();
     spectra.push_back(twiddle * (hann.asDiagonal() * block).cast<std::complex<double>>());
   }

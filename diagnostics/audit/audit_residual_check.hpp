@@ -21,6 +21,7 @@
 // is the catalogue's harmonic_disturbance; a spectral-line test against neighbouring bins was tried and rejected
 // resonant closed-loop noise spectra, so it is not used).
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -38,8 +39,11 @@ struct ResidualCheck {
 };
 
 // `residual` (samples x outputs) and `excitation` (samples x excitations): the validation
-// segment, deviations. Not determinable (and consistent) when fewer than 16 windows of 64
-// samples fit. Error for mismatched rows, no excitation, or alpha outside (0, 1).
-ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha);
+// segment, deviations. `left_out` (per sample, or empty): where a controller clamp acted; the
+// windows holding one are left out. Not determinable (and consistent) when fewer than 16
+// windows of 64 samples fit or remain. Error for mismatched rows, no excitation, or alpha
+// outside (0, 1).
+ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha,
+                             const std::vector<bool>& left_out = {});
 
 }  // namespace ambid::diag

@@ -26,14 +26,19 @@ ImprovementTest improvement_test(const Eigen::MatrixXd& measured, const Eigen::M
       extended.rows() < validation.end || nominal.cols() != q || extended.cols() != q)
     throw Error("audit: improvement test segment [" + std::to_string(validation.begin) + ", " +
                 std::to_string(validation.end) + ") does not fit the signals");
-  const Eigen::MatrixXd m = measured.middleRows(validation.begin, n);
-  const Eigen::MatrixXd e0 = m - nominal.middleRows(validation.begin, n);
-  const Eigen::MatrixXd d = extended.middleRows(validation.begin, n) - nominal.middleRows(validation.begin, n);
+  // The samples left out (a controller clamp acted) are zero in m, e0, d and the noise: no
+  // sum below counts them, and the means and covariances are over the kept ones.
+  const Eigen::VectorXd kept = validation.kept();
+  const double n_kept = kept.sum();
+  if (n_kept < 8.0) throw InsufficientData("audit: fewer than 8 samples without a controller clamp to test");
+  const Eigen::MatrixXd m = validation.kept_rows(measured);
+  const Eigen::MatrixXd e0 = m - validation.kept_rows(nominal);
+  const Eigen::MatrixXd d = validation.kept_rows(extended) - validation.kept_rows(nominal);
   Eigen::MatrixXd noise = e0 - d;
-  noise.rowwise() -= noise.colwise().mean();
+  noise -= kept * (noise.colwise().sum() / n_kept);
   Eigen::VectorXd w(q);
   for (Eigen::Index j = 0; j < q; ++j) {
-    const double spread2 = (m.col(j).array() - m.col(j).mean()).square().sum();
+    const double spread2 = ((m.col(j).array() - m.col(j).sum() / n_kept) * kept.array()).square().sum();
     if (!(spread2 > 0.0)) throw InsufficientData("audit: measured output " + std::to_string(j + 1) + " is constant");
     w[j] = 1.0 / spread2;
   }
@@ -49,7 +54,7 @@ ImprovementTest improvement_test(const Eigen::MatrixXd& measured, const Eigen::M
     for (Eigen::Index l = 0; l < q; ++l)
       for (Eigen::Index h = -M; h <= M; ++h) {
         const double taper = 1.0 - double(std::abs(h)) / double(M + 1);
-        const double gamma = lagged_dot(noise.col(j), noise.col(l), h) / double(n);
+        const double gamma = lagged_dot(noise.col(j), noise.col(l), h) / n_kept;
         variance += w[j] * w[l] * taper * gamma * lagged_dot(d.col(j), d.col(l), h);
       }
   if (!(variance > 0.0)) {

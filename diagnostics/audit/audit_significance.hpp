@@ -28,7 +28,8 @@ struct ImprovementTest {
 };
 
 // measured, nominal, extended: deviations (samples x outputs), at least validation.end rows.
-// `max_lag` M of the covariance sum (clamped to a quarter of the segment). Error when the
+// `max_lag` M of the covariance sum (clamped to a quarter of the segment). The samples the
+// segment leaves out (a controller clamp acted) count in no sum. Error when the
 // segment does not fit the signals or a measured output is constant there.
 ImprovementTest improvement_test(const Eigen::MatrixXd& measured, const Eigen::MatrixXd& nominal,
                                  const Eigen::MatrixXd& extended, const Segment& validation, Eigen::Index max_lag);

@@ -75,7 +75,7 @@ void add_audit_command(CLI::App& app) {
     if (result.clamped_samples > 0)
       std::cout << "  " << result.clamped_samples
                 << " samples with a controller clamp acting (not exogenous): left out "
-                << "of every NRMSE\n";
+                << "of every fit, score and statistic (audit.json clamped_samples)\n";
     std::cout << "  wrote " << (dir / "audit.json").string() << ", model-extended.json and report.html\n";
   });
 }

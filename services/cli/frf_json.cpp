@@ -92,6 +92,11 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
               {"convention", "G(jw) from u to y deviations (SI units); u = K y + r; lag = negative phase"},
               {"frequency_hz", list(report.frequency_hz)}};
   if (report.periodic) out["periodic"] = periodic_json(*report.periodic, report.reference_names);
+  out["clamped_samples"] = {{"count", report.clamped_samples},
+                            {"blocks_left_out", report.blocks_left_out},
+                            {"rule",
+                             "no period (and not the one after it), Welch segment or stepped-sine window "
+                             "holding a sample where a controller clamp acted is averaged"}};
   json plant = json::object();
   for (const ident::PlantPair& pair : report.pairs) plant[pair.name] = plant_json(pair, options.confidence);
   out["plant"] = plant;
