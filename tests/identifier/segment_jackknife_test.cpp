@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -47,9 +48,25 @@ TEST(SegmentJackknife, SubRecordDropsExactlyOneSegment) {
   EXPECT_THROW(experiment_without_segment(e, 0, 60), InsufficientData);
 }
 
-TEST(SegmentJackknife, MeanOfGroupsGivesTheStandardError) {
+// Two-sided 95 % quantiles of Student's t from the tables (independent truth), and the limits:
+// 1 degree of freedom is the Cauchy law (tan(0.475 pi)), many the normal law (1.959964).
+TEST(SegmentJackknife, StudentTQuantilesAreTheTables) {
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 1), std::tan(0.475 * std::numbers::pi), 1e-9);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 2), 4.302653, 1e-6);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 3), 3.182446, 1e-6);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 7), 2.364624, 1e-6);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 15), 2.131450, 1e-6);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.95, 2000), 1.959964, 2e-3);
+  EXPECT_NEAR(student_t_two_sided_quantile(0.99, 4), 4.604095, 1e-6);
+  EXPECT_THROW(student_t_two_sided_quantile(0.95, 0), Error);
+  EXPECT_THROW(student_t_two_sided_quantile(1.0, 3), Error);
+}
+
+TEST(SegmentJackknife, MeanOfGroupsGivesTheStandardErrorWidenedForItsDegreesOfFreedom) {
   // theta = mean of K group means; leave-one-out estimates are the means of the other K - 1.
-  // The jackknife sigma is then exactly std(group means) / sqrt(K).
+  // The jackknife's s is then exactly std(group means) / sqrt(K); the sigma is s widened by
+  // t(5) / 2 for the 95.45 % two-sided quantile t(5) = 2.64865 (K - 1 = 5; by numerical
+  // integration of the density).
   const std::vector<double> means = {1.0, 3.0, 2.5, -0.5, 4.0, 2.0};
   const double K = double(means.size());
   double total = 0.0, mean = 0.0, var = 0.0;
@@ -59,8 +76,9 @@ TEST(SegmentJackknife, MeanOfGroupsGivesTheStandardError) {
   std::vector<std::map<std::string, double>> loo;
   for (double m : means) loo.push_back({{"theta", (total - m) / (K - 1.0)}, {"twice", 2.0 * (total - m) / (K - 1.0)}});
   const auto sigma = jackknife_sigma(loo);
-  EXPECT_NEAR(sigma.at("theta"), std::sqrt(var / K), 1e-12);
-  EXPECT_NEAR(sigma.at("twice"), 2.0 * std::sqrt(var / K), 1e-12);
+  const double widen = 2.64865 / 2.0;
+  EXPECT_NEAR(sigma.at("theta"), widen * std::sqrt(var / K), 1e-4 * std::sqrt(var / K));
+  EXPECT_NEAR(sigma.at("twice"), 2.0 * sigma.at("theta"), 1e-12);
   EXPECT_THROW(jackknife_sigma({loo.front()}), Error);
   loo.back().erase("twice");
   EXPECT_THROW(jackknife_sigma(loo), Error);
