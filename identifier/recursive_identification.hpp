@@ -28,7 +28,7 @@ struct RecursiveIdentifyOptions {
   double forgetting = 0.9999;
   // Variance per sample of the offsets' random walk (Amb1dofRecursivePemOptions); empty: the
   // family's default.
-  std::optional<double> offset_random_walk;
+  std::optional<double> offset_random_walk = std::nullopt;
 };
 
 class RecursiveIdentification {

@@ -89,6 +89,14 @@ Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
 void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   x_ = at_rest(y);
   w_.setZero();
+  // Where the loop settles after a gap is not known (a fault moves the bias currents): the
+  // offsets' variance back up to the start's, so that w, not v, takes the new operating point.
+  const Eigen::VectorXd variances = ud_.variances();
+  for (int k = 9; k < kGain; ++k) {
+    if (!(variances(k) < 1.0)) continue;
+    Parameters along = Parameters::Unit(k);
+    ud_.add(1.0 - variances(k), along);
+  }
   started_ = true;
 }
 

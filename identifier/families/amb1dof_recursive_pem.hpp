@@ -77,8 +77,9 @@ class Amb1dofRecursivePem {
 
   // One sample: y = [x, i1, i2], u = [u1, u2] (the same deviations as the batch method).
   void update(const Eigen::Vector3d& y, const Eigen::Vector2d& u);
-  // After a gap in the samples: x^ restarts at y (at rest) and the sensitivities at zero; theta,
-  // P and Lambda are kept.
+  // After a gap in the samples: x^ restarts at y (at rest) and the sensitivities at zero, the
+  // offsets' variance at least that of the start (the operating point may have moved); theta,
+  // the rest of P and Lambda are kept.
   void restart(const Eigen::Vector3d& y);
   // Between two published estimates: the information of every sample so far about v and w is
   // scaled by `carry` (0 < carry <= 1; the variance of each of v1..v9, w1..w3 grows by a random

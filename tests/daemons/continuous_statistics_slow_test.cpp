@@ -73,7 +73,8 @@ std::map<std::string, Series> publish(const test_support::Amb1dofRecord& record,
   std::map<std::string, Series> out;
   std::uint64_t seq = 0;
   for (Eigen::Index begin = record.settled; begin + per_window <= e.samples(); begin += per_window) {
-    const bus::IdentifiedModel m = estimator.identify(ident::experiment_segment(e, begin, begin + per_window), "p", seq++);
+    const bus::IdentifiedModel m =
+        estimator.identify(ident::experiment_segment(e, begin, begin + per_window), "p", seq++);
     if (m.time - e.t(record.settled) < kSkip) continue;
     for (const bus::Estimate& p : m.parameters) {
       const double truth = record.truth.at(p.name);
