@@ -1,11 +1,11 @@
 // The stack at a real bearing's sensor noise, configured as deploy/config runs it: the bearing
 // of tests/integration/scenarios/noisy-bearing.json (0.1 um on x, 1 mA on each current, 1 V
-// PRBS, 10 s records), the identifier's default (rpem, continuous, published every 0.5 s; each
-// record's first 0.25 s dropped), the deploy diagnostics settings, the plant at real time as
-// deploy/config/plant.json. The source is swapped to the same bearing with R1 +10 %
+// PRBS, 10 s records), pem on 0.5 s windows (each record's first 0.25 s dropped), the deploy
+// diagnostics settings. The source is swapped to the same bearing with R1 +10 %
 // (noisy-coil1-hot10.json): the ERROR naming coil 1 resistance must come within 10 s of plant
-// time after the swap, and no alert but OK before it. Slow label: ~60 s of wall time, and the
-// three daemons must keep up with real time.
+// time after the swap, and no alert but OK before it. Slow label: it needs the identifier to
+// keep up with real time at half speed, which pem (~0.6 s of CPU per 0.5 s window) did not on
+// a two-core machine shared with eight builds (22 windows in 150 s; STALE alerts).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -32,7 +32,9 @@ double number_after(const std::string& text, const std::string& key, std::size_t
   return at == std::string::npos ? std::nan("") : std::stod(text.substr(at + key.size()));
 }
 
-// The plant at `speed` times real time, the identifier and diagnostics daemons as deploy/config.
+// The plant at `speed` times real time (deploy/config's 0.5: pem takes ~0.6 s of CPU per 0.5 s
+// window, most of them at its iteration limit), the identifier and diagnostics daemons as
+// deploy/config.
 void configure_noisy_stack(const Stack& stack, double speed) {
   std::ofstream(stack.dir() / "plant.json")
       << R"({"source": "sim", "target": ")" << scenarios << R"(noisy-bearing.json", "batch_samples": 500, "speed": )"
@@ -50,7 +52,7 @@ void configure_noisy_stack(const Stack& stack, double speed) {
 
 TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTime) {
   Stack stack("stack_noise_coil1", 195);
-  configure_noisy_stack(stack, 1.0);
+  configure_noisy_stack(stack, 0.5);
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
   // The baseline (20 windows of 0.5 s) and 20 nominal windows after it before the fault.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(150);
