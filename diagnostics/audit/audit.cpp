@@ -223,7 +223,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
   r.inputs = measured.u_names;
   r.estimation = {0, Eigen::Index(std::llround(options.estimation_fraction * double(N)))};
   r.validation = {r.estimation.end, N};
-  r.rounded = (logging_resolution(measured.y).array() > 0.0).any();
+  r.rounded = (logging_resolution(measured).array() > 0.0).any();
   const ControllerReplay clamps = clamped_samples(measured);  // not exogenous: no score counts them
   r.clamped_samples = clamps.clamped_samples;
   if (r.clamped_samples > 0) r.estimation.left_out = r.validation.left_out = clamps.clamped;

@@ -30,7 +30,7 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   sim::ClosedLoopOptions options;
   options.samples = samples;
   options.excitation = measured.r_deviation().topRows(samples);
-  const Eigen::VectorXd resolution = logging_resolution(measured.y);
+  const Eigen::VectorXd resolution = logging_resolution(measured);
   if ((resolution.array() > 0.0).any()) {
     options.followed = measured.y.topRows(samples);
     options.followed_resolution = resolution;

@@ -1,6 +1,5 @@
-// What the audit reads of a rounded record from the record itself: the logging resolution
-// (audit_rounding.hpp) and a DAC's step (audit_quantisation.hpp), on signals built here with
-// known steps.
+// What the audit reads of a rounded record from the record itself: a DAC's step
+// (audit_quantisation.hpp), on signals built here with a known step.
 #include <cmath>
 #include <random>
 
@@ -9,7 +8,6 @@
 
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_quantisation.hpp"
-#include "diagnostics/audit/audit_rounding.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -23,21 +21,6 @@ Eigen::VectorXd uniform(Eigen::Index n, double lo, double hi, std::uint64_t seed
 }
 
 Eigen::VectorXd rounded(const Eigen::VectorXd& v, double step) { return (v / step).array().round().matrix() * step; }
-
-TEST(AuditRounding, TheLoggingResolutionIsReadFromTheValues) {
-  Eigen::MatrixXd logged(2000, 4);
-  logged.col(0) = rounded(uniform(2000, 0.013, 0.016, 1), 1e-5);  // 0.01 mm in m
-  logged.col(1) = rounded(uniform(2000, 0.0, 12.0, 2), 0.01);     // 0.01 V
-  logged.col(2) = uniform(2000, 0.0, 1.0, 3);                     // full precision
-  logged.col(3).setConstant(0.5);                                 // constant: nothing to read
-  const Eigen::VectorXd q = logging_resolution(logged);
-  EXPECT_DOUBLE_EQ(q(0), 1e-5);
-  EXPECT_DOUBLE_EQ(q(1), 0.01);
-  EXPECT_EQ(q(2), 0.0);
-  EXPECT_EQ(q(3), 0.0);
-  // 0.02 V steps are read as 0.02, not as the 0.01 they are also multiples of.
-  EXPECT_DOUBLE_EQ(logging_resolution(rounded(uniform(2000, 0.0, 12.0, 4), 0.02))(0), 0.02);
-}
 
 // A first-order coil (a = exp(-R Ts / L), 830 rad/s at 3.25 ms) driven by the command rounded
 // to 0.35 V, its current logged at 0.01 mA: the screen reads the step to 0.05 %.

@@ -77,10 +77,9 @@ TEST_P(HiddenEffect, DISABLED_IsNamedWithTheValidationErrorHalved) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(MaglevAuditSweep, HiddenEffect,
-                         ::testing::ValuesIn(cases({"sensor_nonlinearity", "force_law", "actuator_quantisation",
-                                                    "sensor_delay"})),
-                         name_of);
+INSTANTIATE_TEST_SUITE_P(
+    MaglevAuditSweep, HiddenEffect,
+    ::testing::ValuesIn(cases({"sensor_nonlinearity", "force_law", "actuator_quantisation", "sensor_delay"})), name_of);
 
 class CleanRecord : public ::testing::TestWithParam<SweepCase> {};
 
@@ -126,7 +125,8 @@ INSTANTIATE_TEST_SUITE_P(
     Seed11, MaglevAuditToday,
     ::testing::Values(TodayCase{{"sensor_nonlinearity", 0, 1.3e-3, 11}, "unexplained", "sensor_nonlinearity", 4.0},
                       TodayCase{{"sensor_nonlinearity", 0, 1.5e-3, 11}, "unexplained", "sensor_nonlinearity", 4.0},
-                      TodayCase{{"sensor_nonlinearity", 0, 3.25e-3, 11}, "sensor_nonlinearity", "sensor_nonlinearity", 10.0},
+                      TodayCase{
+                          {"sensor_nonlinearity", 0, 3.25e-3, 11}, "sensor_nonlinearity", "sensor_nonlinearity", 10.0},
                       TodayCase{{"force_law", 0, 1.3e-3, 11}, "unexplained", "force_law", 9.0},
                       TodayCase{{"force_law", 0, 1.5e-3, 11}, "unexplained", "force_law", 9.0},
                       TodayCase{{"force_law", 0, 3.25e-3, 11}, "force_law", "force_law", 15.0},
