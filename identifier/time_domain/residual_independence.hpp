@@ -23,11 +23,11 @@
 namespace ambid::ident {
 
 struct ResidualIndependence {
-  double z = 0.0;                 // largest |z| with the past r over every residual and lag
-  double correlation = 0.0;       // its correlation coefficient (z / sqrt(N - k))
-  std::string worst;              // where: "e_x with r1 at lag 3"
-  double whiteness_z = 0.0;       // largest |z| with the residual's own past
-  std::string whiteness_worst;    // where: "e_i1 with itself at lag 1"
+  double z = 0.0;               // largest |z| with the past r over every residual and lag
+  double correlation = 0.0;     // its correlation coefficient (z / sqrt(N - k))
+  std::string worst;            // where: "e_x with r1 at lag 3"
+  double whiteness_z = 0.0;     // largest |z| with the residual's own past
+  std::string whiteness_worst;  // where: "e_i1 with itself at lag 1"
   Eigen::Index lags = 0;
   Eigen::Index correlations = 0;  // how many z were tested, both kinds (each kind the maximum of that many N(0, 1))
 };
