@@ -104,7 +104,7 @@ struct AuditOptions {
   // drift improves it "significantly". A finding there must also lower nrmse_total by at least
   // this fraction of the model it extends; in [0, 1).
   double rounded_min_improvement = 0.1;
-  double foil_margin = 1.5;             // z by which a cause must beat every significant foil (audit_foils.hpp)
+  double foil_margin = 1.5;  // z by which a cause must beat every significant foil (audit_foils.hpp)
   FitOptions fit;
 };
 

@@ -123,7 +123,10 @@ bool Amb1dofPredictor::predict(const Parameters& theta, Each&& each) const {
 
 std::optional<Eigen::Vector3d> Amb1dofPredictor::squares(const Parameters& theta) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  if (!predict(theta, [&](Index t, const Eigen::Vector3d& e) { if (scored(t)) sum += e.cwiseAbs2(); }) ||
+  if (!predict(theta,
+               [&](Index t, const Eigen::Vector3d& e) {
+                 if (scored(t)) sum += e.cwiseAbs2();
+               }) ||
       !sum.allFinite())
     return std::nullopt;
   return sum;

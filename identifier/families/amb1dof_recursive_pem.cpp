@@ -92,21 +92,22 @@ void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   // Where the loop settles after a gap is not known (a fault moves the bias currents): the
   // offsets' variance back up to the start's, so that w, not v, takes the new operating point.
   const Eigen::VectorXd variances = ud_.variances();
-  for (int k = 9; k < kGain; ++k) {
+  for (int k = 9; k < kThetaGain; ++k) {
     if (!(variances(k) < 1.0)) continue;
-    Parameters along = Parameters::Unit(k);
+    Theta along = Theta::Unit(k);
     ud_.add(1.0 - variances(k), along);
   }
   started_ = true;
 }
 
 void Amb1dofRecursivePem::relax(double carry) {
-  if (!(carry > 0.0 && carry <= 1.0)) throw Error(kWho + ": carry must be in (0, 1], got " + std::to_string(carry));
+  if (!(carry > 0.0 && carry <= 1.0))
+    throw Error(kRecursivePemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
   // v and w only: the predictor gain K keeps its covariance (relaxed too, it let one window's
   // step make the predictor unstable).
   const Eigen::VectorXd variances = ud_.variances();
-  for (int k = 0; k < kGain; ++k) {
-    Parameters along = Parameters::Unit(k);
+  for (int k = 0; k < kThetaGain; ++k) {
+    Theta along = Theta::Unit(k);
     ud_.add((1.0 / carry - 1.0) * variances(k), along);
   }
   s1_ *= carry;

@@ -251,7 +251,8 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   if (in.i.size() != N || in.u.size() != N)
     throw Error(kGreyboxWho + ": x, i and u must have one entry per sample (" + std::to_string(N) + ", " +
                 std::to_string(in.i.size()) + ", " + std::to_string(in.u.size()) + ")");
-  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite()) throw Error(kGreyboxWho + ": a signal is not finite");
+  if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite())
+    throw Error(kGreyboxWho + ": a signal is not finite");
   if ((in.x.array() <= 0.0).any()) throw Error(kGreyboxWho + ": the gap x must be positive in every sample");
   if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0) || !(in.coil_window >= 0.0)) {
     std::ostringstream msg;
@@ -307,7 +308,8 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   const Eigen::VectorXd& r = solution.residuals;
   const Eigen::MatrixXd H_inv = linalg::qr_inverse_gram(J);
   if (H_inv.size() == 0)
-    throw InsufficientData(kGreyboxWho + ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
+    throw InsufficientData(kGreyboxWho +
+                           ": the body fit is rank deficient (rho, n_i, n_x not separable in this record)");
   const Eigen::Matrix3d body_cov = H_inv * score_covariance(J, r, 2 * out.window_samples) * H_inv;
 
   // Coil covariance through R, L, Ke (central differences of coil_physical).

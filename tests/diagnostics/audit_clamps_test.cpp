@@ -77,8 +77,9 @@ TEST(AuditClamps, ClampedSamplesCountInNoStatistic) {
 
   const nlohmann::json j = audit_json(b, "run.json", "model-extended.json");
   EXPECT_EQ(j["clamped_samples"]["count"], kMarked);
-  EXPECT_EQ(j["clamped_samples"]["estimation"].get<Eigen::Index>() + j["clamped_samples"]["validation"].get<Eigen::Index>(),
-            kMarked);
+  EXPECT_EQ(
+      j["clamped_samples"]["estimation"].get<Eigen::Index>() + j["clamped_samples"]["validation"].get<Eigen::Index>(),
+      kMarked);
 
   // Unmarked, the garbage is scored.
   Experiment unmarked = garbage;
