@@ -8,9 +8,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
+#include <vector>
 
 #include "diagnostics/trend_store.hpp"
 #include "stack_support.hpp"
@@ -38,10 +40,16 @@ TEST(RigStack, CoilFaultOnTheBoardGivesErrorAlertThenStaleWhenTheBoardDies) {
   // The estimates behind the alert came from the board: stored with source rig, nominal R1
   // (17.5 ohm) before the fault, the faulty 21 ohm after it (closed-loop identification, as on
   // the simulated source: within 5 %).
+  // The median of the last 9 windows, 1 s of wall time (10 s of board time) after the alert:
+  // the window holding the fault's start reads between the two (22.3 ohm once).
+  std::this_thread::sleep_for(std::chrono::seconds(1));
   const auto r1 = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
   ASSERT_GT(r1.size(), 10u);
   EXPECT_EQ(r1.back().source, diag::Source::rig);
-  EXPECT_NEAR(r1.back().value, 21.0, 0.05 * 21.0);
+  std::vector<double> last;
+  for (auto it = r1.end() - 9; it != r1.end(); ++it) last.push_back(it->value);
+  std::nth_element(last.begin(), last.begin() + 4, last.end());
+  EXPECT_NEAR(last[4], 21.0, 0.05 * 21.0);
   std::size_t nominal_rig = 0;
   for (const auto& e : r1) nominal_rig += e.source == diag::Source::rig && std::abs(e.value - 17.5) < 0.175;
   EXPECT_GT(nominal_rig, 0u);
