@@ -39,13 +39,16 @@ double true_unstable_pole(const Experiment& e) {
   return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().real().maxCoeff();
 }
 
+// The rig-like record both tests below simulate (3.25 ms, reference steps every 1.5 s); add the
+// output stem.
+constexpr const char* kRigRecord =
+    "sim --plant maglev1coil_voltage --duration 9.75 --set R=205 --set L=0.27 --set Km=1.62e-8 --set Ke=1.62e-8 "
+    "--step-period 1.5 --seed 7 --out ";
+
 TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
   const fs::path dir = fresh_dir("maglev_cli");
   const std::string stem = (dir / "run").string();
-  CommandResult r = run_ambid(
-      "sim --plant maglev1coil_voltage --duration 9.75 --set R=205 --set L=0.27 --set Km=1.62e-8 --set Ke=1.62e-8 "
-      "--step-period 1.5 --seed 7 --out " +
-      stem);
+  CommandResult r = run_ambid(std::string(kRigRecord) + stem);
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("3000 samples"));
   const Experiment e = read_experiment(stem + ".json").experiment;
@@ -75,10 +78,7 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
 TEST(MaglevCli, DISABLED_FrfUnstablePoleOfASimulatedRigRecord) {
   const fs::path dir = fresh_dir("maglev_cli_frf");
   const std::string stem = (dir / "run").string();
-  CommandResult r = run_ambid(
-      "sim --plant maglev1coil_voltage --duration 9.75 --set R=205 --set L=0.27 --set Km=1.62e-8 --set Ke=1.62e-8 "
-      "--step-period 1.5 --seed 7 --out " +
-      stem);
+  CommandResult r = run_ambid(std::string(kRigRecord) + stem);
   ASSERT_EQ(r.status, 0) << r.output;
   const Experiment e = read_experiment(stem + ".json").experiment;
 
