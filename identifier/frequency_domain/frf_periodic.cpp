@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "identifier/frequency_domain/frf_dft.hpp"
 #include "identifier/frequency_domain/frf_linalg.hpp"
+#include "identifier/frequency_domain/frf_period_scatter.hpp"
 
 namespace ambid::ident {
 namespace {
@@ -271,7 +272,9 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
     if (with_variance) {
       // The same local model of each period alone, on the mean inputs, with that period's
       // noise moved to the outputs to first order: Y_b - G (U_b - U_mean), whose mean over the
-      // periods is Y_mean. The scatter of these fits over B is the variance of the estimate.
+      // periods is Y_mean. The scatter of these fits over the periods, with the loop's
+      // transient separated (frf_period_scatter.hpp; not across left-out periods, where the
+      // periods are not consecutive), is the variance of the estimate.
       std::vector<std::vector<Eigen::MatrixXcd>> Gb;
       for (Eigen::Index b = 0; b < B; ++b) {
         const auto bi = static_cast<std::size_t>(b);
@@ -281,14 +284,18 @@ PeriodicFrf estimate_periodic_frf(const Eigen::MatrixXd& r, const Eigen::MatrixX
               (out.plant.value[static_cast<std::size_t>(l)] * (Up[bi].row(l) - U_mean.row(l)).transpose()).transpose();
         Gb.push_back(local_polynomial_frf({U_mean}, {Yb}, o.lines, o.local_polynomial));
       }
-      for (Eigen::Index l = 0; l < nl; ++l) {
-        const auto li = static_cast<std::size_t>(l);
-        Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(ny, nu);
-        for (const auto& g : Gb) mean += g[li];
-        mean /= b_count;
-        std::vector<Eigen::MatrixXcd> deviations;
-        for (const auto& g : Gb) deviations.push_back(g[li] - mean);
-        out.plant.variance[li] = spread(deviations, b_count * (b_count - 1.0));
+      if (blocks_left_out == 0 && B >= 3) {
+        out.plant.variance = period_mean_variance(Gb, std::max<Eigen::Index>(o.local_polynomial.half_width, 1));
+      } else {
+        for (Eigen::Index l = 0; l < nl; ++l) {
+          const auto li = static_cast<std::size_t>(l);
+          Eigen::MatrixXcd mean = Eigen::MatrixXcd::Zero(ny, nu);
+          for (const auto& g : Gb) mean += g[li];
+          mean /= b_count;
+          std::vector<Eigen::MatrixXcd> deviations;
+          for (const auto& g : Gb) deviations.push_back(g[li] - mean);
+          out.plant.variance[li] = spread(deviations, b_count * (b_count - 1.0));
+        }
       }
     }
   }

@@ -56,7 +56,9 @@ struct PeriodicFrfOptions {
   // ratio is ill-conditioned where the loop suppresses an input direction). Its variance is
   // the period-to-period scatter, over the number of periods (2 (periods - 1) degrees of
   // freedom), of the same local model fitted to each period alone on the mean inputs, with the
-  // period's input noise moved to its outputs to first order: Y_p - G (U_p - U_mean).
+  // period's input noise moved to its outputs to first order: Y_p - G (U_p - U_mean), and the
+  // loop's transient, which telescopes in the mean, separated (frf_period_scatter.hpp; the
+  // plain scatter when periods were left out).
   bool plant_from_period_means = false;
   // Per sample (rows of r, u, y): not exogenous (a controller clamp acted there). A block
   // holding one is left out, and so is the block after it (the loop's free response to the

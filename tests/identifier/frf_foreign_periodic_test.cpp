@@ -31,7 +31,7 @@ namespace {
 using test::kPi;
 constexpr double kT = 1e-4;
 // Records (multisine phases and noise) of the coverage test.
-constexpr std::uint64_t kCoverageSeeds[] = {23, 24, 25};
+constexpr std::uint64_t kCoverageSeeds[] = {23, 24, 25, 26, 27, 28};
 
 // Random-phase multisine, rms `level` per channel, `samples` long (need not end on a whole
 // period): channel c gets the lines lines[c] of the N-sample grid.
@@ -215,18 +215,30 @@ TEST(FrfForeignPeriodic, RepeatedMaximumLengthPrbsIsDetectedAndGivesTheLinearPla
   EXPECT_LT(std::abs(pole - truth), 0.005 * truth) << pole << " vs " << truth;
 }
 
+// Coverage of the noise bounds in one frequency band: values inside their 95 % bound, and
+// the mean of |G - G0|^2 / variance (36 / 34 = 1.06 for a calibrated variance on 36 degrees of
+// freedom, E[F(2, 36)]).
+struct BandCoverage {
+  double f_low, f_high;
+  int inside = 0, total = 0;
+  double ratio_sum = 0.0;
+  double coverage() const { return double(inside) / double(total); }
+  double mean_ratio() const { return ratio_sum / double(total); }
+};
+
 TEST(FrfForeignPeriodic, NoisyBoundsCoverTheTruthAtTheirConfidence) {
   // 0.1 um on x, 1 mA on each current; kCoverageSeeds records of 20 periods (19 used).
   // Every element of every line: |G - G0| <= bound at 95 %, the bound from the period-to-period
-  // scatter of the estimator used (the local rational model of each period) on 2 (19 - 1)
-  // degrees of freedom (an F(2, 36) quantile). A calibrated bound leaves 5 % out. The values
-  // are not independent (the elements of a line share its periods' noise, neighbouring lines
-  // share the local model's window), so the accepted band is 92-98 %. Measured: 97.97 % over
-  // the three records (|G - G0|^2 / variance averages 0.8 against the 1.06 of a calibrated
-  // bound: still a little wide, 4-fold below 50 Hz); with the variance of the indirect
-  // estimate T_yr T_ur^-1, which the local rational model of the period means is not, it
-  // covered 98.5 % of one record and the test accepted up to 99.5 %.
-  int inside = 0, total = 0;
+  // scatter of the estimator used (the local rational model of each period) with the loop's
+  // transient separated, on 2 (19 - 1) degrees of freedom (an F(2, 36) quantile). Per band,
+  // so that bounds too wide where the loop's slow modes are (the plain scatter: 4-fold below
+  // 50 Hz, 100 % covered there) cannot hide behind the many lines above. The values are not
+  // independent (the six elements of a line share its periods' noise, neighbouring lines the
+  // local model's window): about 1200 independent lines-and-records in all, a binomial
+  // standard deviation of 0.63 % at 95 %. Measured (6 records): below 50 Hz 94.1 % (mean ratio
+  // 1.02), 50-200 Hz 95.2 % (0.94), 200-1000 Hz 97.2 % (0.86: still 1.2-fold wide, cause
+  // open), 96.7 % in all; the plain scatter gave 100 % (0.23), 99.4 % (0.54), 97.9 % (0.78).
+  std::vector<BandCoverage> bands = {{0.0, 50.0}, {50.0, 200.0}, {200.0, 1000.5}};
   for (const std::uint64_t seed : kCoverageSeeds) {
     const Experiment e = run_bearing(foreign_multisine(2000, zippered_lines(), 40000, 0.05, seed), 1e-7, 1e-3, seed);
     FrfAnalysisOptions o;
@@ -234,28 +246,43 @@ TEST(FrfForeignPeriodic, NoisyBoundsCoverTheTruthAtTheirConfidence) {
     const FrfReport report = analyse_frf(e, o);
     ASSERT_EQ(report.method, "periodic");
     ASSERT_EQ(report.periodic->periods_used, 19);
-    int seed_inside = 0, seed_total = 0;
+    ASSERT_DOUBLE_EQ(report.plant.variance_dof, 36.0);
     for (const PlantPair& pair : report.pairs) {
       ASSERT_EQ(pair.bound.size(), report.frequency_hz.size());
       const Eigen::Index i = pair.output == "x" ? 0 : pair.output == "i1" ? 1 : 2;
       const Eigen::Index j = pair.input == "u1" ? 0 : 1;
       for (Eigen::Index l = 0; l < report.frequency_hz.size(); ++l) {
-        const std::complex<double> truth = linear_bearing(report.frequency_hz(l))(i, j);
-        seed_inside += std::abs(pair.value(l) - truth) <= pair.bound(l) ? 1 : 0;
-        ++seed_total;
+        const double f = report.frequency_hz(l);
+        const std::complex<double> truth = linear_bearing(f)(i, j);
+        const auto band = std::find_if(bands.begin(), bands.end(),
+                                       [f](const BandCoverage& b) { return f >= b.f_low && f < b.f_high; });
+        ASSERT_NE(band, bands.end()) << f;
+        band->inside += std::abs(pair.value(l) - truth) <= pair.bound(l) ? 1 : 0;
+        band->ratio_sum += std::norm(pair.value(l) - truth) / pair.variance(l);
+        ++band->total;
       }
     }
-    EXPECT_EQ(seed_total, 1200);
-    RecordProperty("noisy_coverage_95_seed_" + std::to_string(seed),
-                   test::scientific(double(seed_inside) / double(seed_total)));
-    inside += seed_inside;
-    total += seed_total;
   }
+  int inside = 0, total = 0;
+  for (const BandCoverage& b : bands) {
+    const std::string name = std::to_string(int(b.f_low)) + "_" + std::to_string(int(b.f_high)) + "_hz";
+    RecordProperty("noisy_coverage_95_" + name, test::scientific(b.coverage()));
+    RecordProperty("noisy_error_over_variance_" + name, test::scientific(b.mean_ratio()));
+    std::cout << b.f_low << "-" << b.f_high << " Hz: coverage of the 95 % bounds " << b.coverage() << " of " << b.total
+              << ", mean |G - G0|^2 / variance " << b.mean_ratio() << "\n";
+    EXPECT_GT(b.coverage(), 0.92) << b.f_low;
+    EXPECT_LT(b.coverage(), 0.985) << b.f_low;
+    EXPECT_GT(b.mean_ratio(), 0.75) << b.f_low;
+    EXPECT_LT(b.mean_ratio(), 1.4) << b.f_low;
+    inside += b.inside;
+    total += b.total;
+  }
+  EXPECT_EQ(total, 1200 * std::ssize(kCoverageSeeds));
   const double coverage = double(inside) / double(total);
   RecordProperty("noisy_coverage_95", test::scientific(coverage));
   std::cout << "coverage of the 95 % bounds: " << coverage << " of " << total << " values\n";
-  EXPECT_GT(coverage, 0.92);
-  EXPECT_LT(coverage, 0.98);
+  EXPECT_GT(coverage, 0.935);  // 95 % +- 2.5 % (4 binomial standard deviations)
+  EXPECT_LT(coverage, 0.975);
 }
 
 TEST(FrfForeignPeriodic, RandomPrbsThatNeverRepeatsStaysWelch) {
