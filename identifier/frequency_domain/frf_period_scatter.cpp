@@ -39,8 +39,7 @@ std::vector<Eigen::MatrixXd> period_mean_variance(const std::vector<std::vector<
     for (Eigen::Index l = 0; l < nl; ++l) {
       Eigen::MatrixXcd D = Eigen::MatrixXcd::Zero(rows, cols);
       for (Eigen::Index b = 0; b < B; ++b)
-        D += weight[static_cast<std::size_t>(b)] *
-             per_period[static_cast<std::size_t>(b)][static_cast<std::size_t>(l)];
+        D += weight[static_cast<std::size_t>(b)] * per_period[static_cast<std::size_t>(b)][static_cast<std::size_t>(l)];
       power[static_cast<std::size_t>(l)].row(j - 1) = D.cwiseAbs2().reshaped().transpose();
     }
   }
