@@ -35,16 +35,33 @@ struct Loop {
   std::complex<double> K(double f) const { return freq_response(controller, 2.0 * kPi * f)(0, 0); }
 };
 
-TEST(FrfWelch, NoiseFreeRandomExcitation) {
-  const Loop loop;
-  const Eigen::MatrixXd r = gaussian(2000 * 41, 1.0, 3);
-  const test::LoopData d = test::simulate_loop(loop.plant, loop.controller, test::sales_signals(), r);
+// The loop driven by unit Gaussian r over 41 segments of 2000 samples (seed 3), noise-free.
+struct RandomRun {
+  Eigen::MatrixXd r;
+  test::LoopData d;
+};
+RandomRun random_run(const Loop& loop) {
+  RandomRun run;
+  run.r = gaussian(2000 * 41, 1.0, 3);
+  run.d = test::simulate_loop(loop.plant, loop.controller, test::sales_signals(), run.r);
+  return run;
+}
+
+// Welch with 2000-sample (0.2 s, 5 Hz) segments to 1 kHz.
+WelchFrfOptions welch_to_1khz() {
   WelchFrfOptions o;
   o.sample_time = kT;
   o.segment_samples = 2000;
-  o.first_sample = 2000;
   o.f_max = 1000.0;
-  const WelchFrf e = estimate_welch_frf(r, d.u, d.y, o);
+  return o;
+}
+
+TEST(FrfWelch, NoiseFreeRandomExcitation) {
+  const Loop loop;
+  const RandomRun run = random_run(loop);
+  WelchFrfOptions o = welch_to_1khz();
+  o.first_sample = 2000;
+  const WelchFrf e = estimate_welch_frf(run.r, run.d.u, run.d.y, o);
   EXPECT_EQ(e.segments, 79);
   // Welch (1967): variance ratio 1 + 2 (1 - 1/M) rho^2 with the overlap correlation
   // rho = sum_{n<L/2} w(n) w(n + L/2) / sum w^2 = (L/16) / (3L/8) = 1/6 for Hann at 50 %
@@ -79,12 +96,8 @@ TEST(FrfWelch, NoiseFreeRandomExcitation) {
 // segments at hop 1000 the segments starting at 29000, 30000 and 31000 hold them (3 of 81).
 TEST(FrfWelch, SegmentsHoldingALeftOutSampleAreSkipped) {
   const Loop loop;
-  const Eigen::MatrixXd r = gaussian(2000 * 41, 1.0, 3);
-  const test::LoopData d = test::simulate_loop(loop.plant, loop.controller, test::sales_signals(), r);
-  WelchFrfOptions o;
-  o.sample_time = kT;
-  o.segment_samples = 2000;
-  o.f_max = 1000.0;
+  const auto [r, d] = random_run(loop);
+  WelchFrfOptions o = welch_to_1khz();
   o.left_out.assign(std::size_t(r.rows()), false);
   std::fill(o.left_out.begin() + 30500, o.left_out.begin() + 31500, true);
   Eigen::MatrixXd y_bad = d.y;
@@ -165,11 +178,8 @@ TEST(FrfWelch, ChirpExcitation) {
     r(k, 0) = std::sin(2.0 * kPi * (f0 * t + (f1 - f0) * t * t / (2.0 * D)));
   }
   const test::LoopData d = test::simulate_loop(loop.plant, loop.controller, test::sales_signals(), r);
-  WelchFrfOptions o;
-  o.sample_time = kT;
-  o.segment_samples = 2000;
+  WelchFrfOptions o = welch_to_1khz();
   o.f_min = 20.0;
-  o.f_max = 1000.0;
   const WelchFrf e = estimate_welch_frf(r, d.u, d.y, o);
   std::vector<double> err;
   for (Eigen::Index l = 0; l < e.plant.lines(); ++l)

@@ -21,15 +21,9 @@ struct Case {
   double n_i, n_x;
 };
 
-MaglevGreyBoxInput record(const Case& c, const sim::MaglevParameters& truth, std::uint64_t seed) {
-  sim::MaglevRunOptions o;
-  o.sample_time = c.sample_time;
-  o.samples = c.samples;
-  o.step_period = 1.5;
-  o.seed = seed;
-  const sim::MaglevRun run = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), sim::MaglevRig{}, o);
-  EXPECT_TRUE(run.ended.empty()) << run.ended;
-  const Experiment& e = run.experiment;
+// The fit's input from a maglev record: gap x and current i (y columns), u, the operating
+// point, and the nominal parameters as the fit's start.
+MaglevGreyBoxInput greybox_input_of(const Experiment& e) {
   MaglevGreyBoxInput in;
   in.sample_time = e.sample_time;
   in.x = e.y.col(0);
@@ -39,6 +33,17 @@ MaglevGreyBoxInput record(const Case& c, const sim::MaglevParameters& truth, std
   in.i0 = e.operating_point.at("i");
   in.nominal = sim::MaglevParameters::nominal().to_map();
   return in;
+}
+
+MaglevGreyBoxInput record(const Case& c, const sim::MaglevParameters& truth, std::uint64_t seed) {
+  sim::MaglevRunOptions o;
+  o.sample_time = c.sample_time;
+  o.samples = c.samples;
+  o.step_period = 1.5;
+  o.seed = seed;
+  const sim::MaglevRun run = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), sim::MaglevRig{}, o);
+  EXPECT_TRUE(run.ended.empty()) << run.ended;
+  return greybox_input_of(run.experiment);
 }
 
 TEST(MaglevGreyBox, PhysicalParametersWithinOnePercentAtTheRigsRates) {
@@ -85,15 +90,7 @@ TEST(MaglevGreyBox, FindsAForceLawOtherThanTheNominals) {
   o.seed = 3;
   const sim::MaglevRun run = sim::run_maglev_rig(truth, sim::MaglevParameters::nominal(), rig, o);
   ASSERT_TRUE(run.ended.empty()) << run.ended;
-  const Experiment& e = run.experiment;
-  MaglevGreyBoxInput in;
-  in.sample_time = e.sample_time;
-  in.x = e.y.col(0);
-  in.i = e.y.col(1);
-  in.u = e.u.col(0);
-  in.x0 = e.operating_point.at("x");
-  in.i0 = e.operating_point.at("i");
-  in.nominal = sim::MaglevParameters::nominal().to_map();
+  const MaglevGreyBoxInput in = greybox_input_of(run.experiment);
   const MaglevGreyBoxFit fit = fit_maglev_greybox(in);
   EXPECT_NEAR(fit.value.at("n_i") / 2.0, 1.0, 0.01);
   EXPECT_NEAR(fit.value.at("n_x") / 2.0, 1.0, 0.01);
@@ -114,14 +111,7 @@ TEST(MaglevGreyBox, BackEmfSummedOverWindowsIsNotAttenuatedByTheGapNoise) {
   truth.Ke = 1.62e-8;
   const Experiment e =
       test_support::maglev_record(truth, sim::MaglevRig{}, test_support::maglev_run_options(1.3e-3, 4000, 2));
-  MaglevGreyBoxInput in;
-  in.sample_time = e.sample_time;
-  in.x = e.y.col(0);
-  in.i = e.y.col(1);
-  in.u = e.u.col(0);
-  in.x0 = e.operating_point.at("x");
-  in.i0 = e.operating_point.at("i");
-  in.nominal = sim::MaglevParameters::nominal().to_map();
+  MaglevGreyBoxInput in = greybox_input_of(e);
   const MaglevGreyBoxFit windowed = fit_maglev_greybox(in);
   EXPECT_EQ(windowed.coil_window_samples, 12);
   EXPECT_NEAR(windowed.value.at("Ke") / truth.Ke, 1.0, 3 * windowed.sigma.at("Ke") / truth.Ke);
