@@ -22,8 +22,8 @@
 // a window is; a signature is the central difference of the relative change of each monitored
 // parameter. Faults: coil_resistance (R), amplifier_gain (kw: the fit takes kw as known, so
 // R, L and Ke read kw_nominal / kw), magnetic_saturation (L), force_factor (Km), sensor_gain
-// (the Hall sensor's scale) and sensor_offset (its offset, per relative offset offset / x0). Measured at the rig defaults
-// (3.25 ms, 14 mm; maglev_diagnosis_test.cpp prints them), d log p per relative change:
+// (the Hall sensor's scale) and sensor_offset (its offset, per relative offset offset / x0). Measured at the rig
+// defaults (3.25 ms, 14 mm; maglev_diagnosis_test.cpp prints them), d log p per relative change:
 //                      R      L      Km      n_i    n_x
 //   coil_resistance    1.000  0.000  -0.005  0.000  0.000
 //   amplifier_gain    -1.003 -1.003   0.005  0.000  0.000

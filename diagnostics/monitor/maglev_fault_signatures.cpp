@@ -28,8 +28,8 @@ constexpr MonitoredParameter kMaglevRoles[] = {
 
 // The PID settings of the board (maglev_rig.hpp) the sidecar's rig.settings hold; the sensor's
 // and DAC's settings there describe that record's truth, not the loop, and are not taken.
-constexpr const char* kLoopSettings[] = {"Kp",      "Ti",      "Td",    "integral_min", "integral_max",
-                                         "pid_min", "pid_max", "v_ref"};
+constexpr const char* kLoopSettings[] = {"Kp",           "Ti",      "Td",      "integral_min",
+                                         "integral_max", "pid_min", "pid_max", "v_ref"};
 
 struct Loop {
   sim::MaglevParameters nominal;
@@ -76,7 +76,8 @@ std::map<std::string, double> identified(const Loop& loop, const sim::MaglevPara
     throw Error("fault signatures: the loop with " + what + " is not identified: " + e.what());
   }
   std::map<std::string, double> out;
-  for (const MonitoredParameter& p : kMaglevRoles) out[std::string(p.parameter)] = id.model.physical.at(std::string(p.parameter));
+  for (const MonitoredParameter& p : kMaglevRoles)
+    out[std::string(p.parameter)] = id.model.physical.at(std::string(p.parameter));
   return out;
 }
 
@@ -105,17 +106,35 @@ std::vector<FaultHypothesis> maglev_fault_hypotheses(const Experiment& header, c
   };
   const double x0 = header.operating_point.at("x");
   return {
-      {"coil_resistance", std::nullopt, "coil resistance", {"R"},
+      {"coil_resistance",
+       std::nullopt,
+       "coil resistance",
+       {"R"},
        column("R", [](auto& p, auto&, double s) { p.R *= 1.0 + s; })},
-      {"amplifier_gain", std::nullopt, "amplifier gain (R, L alike: kw is taken as known)", {},
+      {"amplifier_gain",
+       std::nullopt,
+       "amplifier gain (R, L alike: kw is taken as known)",
+       {},
        column("kw", [](auto& p, auto&, double s) { p.kw *= 1.0 + s; })},
-      {"magnetic_saturation", std::nullopt, "coil inductance", {"L"},
+      {"magnetic_saturation",
+       std::nullopt,
+       "coil inductance",
+       {"L"},
        column("L", [](auto& p, auto&, double s) { p.L *= 1.0 + s; })},
-      {"force_factor", std::nullopt, "force constant (Km/m: or the body's mass)", {"Km"},
+      {"force_factor",
+       std::nullopt,
+       "force constant (Km/m: or the body's mass)",
+       {"Km"},
        column("Km", [](auto& p, auto&, double s) { p.Km *= 1.0 + s; })},
-      {"sensor_gain", std::nullopt, "position sensor gain", {},
+      {"sensor_gain",
+       std::nullopt,
+       "position sensor gain",
+       {},
        column("sensor_gain", [](auto&, auto& r, double s) { r.sensor_gain *= 1.0 + s; })},
-      {"sensor_offset", std::nullopt, "position sensor offset", {},
+      {"sensor_offset",
+       std::nullopt,
+       "position sensor offset",
+       {},
        column("sensor_offset", [x0](auto&, auto& r, double s) { r.sensor_offset += s * x0; })},
   };
 }

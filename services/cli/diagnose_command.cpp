@@ -62,6 +62,7 @@ struct DiagnoseArguments {
   std::size_t baseline = 3;
   std::optional<double> window;       // empty: the family's
   std::optional<std::string> method;  // empty: the family's
+  std::string family;                 // the first input's plant model
   std::string plant_id = "plant";
   std::string out;
   bool quiet = false;  // no progress line on stderr
@@ -188,6 +189,9 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
   nlohmann::json j;
   j["format"] = "ambid-diagnosis/1";
   j["plant_id"] = a.plant_id;
+  j["plant_model"] = a.family;
+  j["method"] = a.method.value_or("");
+  j["window"] = a.window.value_or(0.0);
   j["baseline_inputs"] = a.baseline;
   j["baseline_windows"] = baseline_windows;
   j["skipped_windows"] = {{"count", skipped_total(inputs)}, {"reasons", skipped_by_reason(inputs)}};
@@ -219,8 +223,9 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
 std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
                          const diag::OfflineDiagnosis& d) {
   std::ostringstream s;
-  s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first "
-    << a.baseline << " (" << baseline_windows << " windows)\n\n";
+  s << "ambid diagnose: plant '" << a.plant_id << "' (" << a.family << ", windows of " << number(a.window.value_or(0.0))
+    << " s by " << a.method.value_or("") << "), " << inputs.size() << " inputs; baseline: the first " << a.baseline
+    << " (" << baseline_windows << " windows)\n\n";
   for (const Input& in : inputs)
     s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s)"
       << (in.skipped.empty() ? std::string() : ", " + std::to_string(in.skipped.size()) + " skipped")
@@ -329,11 +334,14 @@ void run(DiagnoseArguments a) {
   if (a.baseline >= a.inputs.size())
     throw Error("--baseline " + std::to_string(a.baseline) + " leaves nothing to diagnose: " +
                 std::to_string(a.inputs.size()) + " input(s) given, more than the baseline are needed");
-  const std::string family = plant_model_of(a.inputs.front());
+  a.family = plant_model_of(a.inputs.front());
+  const std::string& family = a.family;
   require_family(a.inputs.front(), family, family);
   const diag::MonitoredFamily& watched = diag::monitored_family(family, "diagnose");
   const double window = a.window.value_or(watched.window);
   const std::string method = a.method.value_or(std::string(watched.window_method));
+  a.window = window;
+  a.method = method;
   if (!(window >= 0.0) || !std::isfinite(window))
     throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(window));
   Progress progress("ambid diagnose", a.quiet);

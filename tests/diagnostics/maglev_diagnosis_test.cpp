@@ -45,7 +45,7 @@ struct Settings {
   double sample_time = 3.25e-3;
   Eigen::Index samples = 3000;
   int substeps = 20;
-  double noise_scale = 1.0;  // of the rig's sensor noise (maglev_run_options)
+  double noise_scale = 1.0;    // of the rig's sensor noise (maglev_run_options)
   std::vector<double> levels;  // empty: the loop's default (13-16 mm)
 };
 
@@ -124,7 +124,7 @@ TEST(MaglevDiagnosis, NominalRecordsAtTheRigsNoiseRaiseNothing) {
   for (std::uint64_t seed = 1; seed <= 9; ++seed) records.push_back(record_of(Record{}, Settings{}, seed));
   const Diagnosis d = diagnose(records, "maglev_nominal");
   EXPECT_EQ(d.skipped, 0u);
-  EXPECT_EQ(d.baseline_windows, 9u);   // 3 records of 9.75 s: 3 windows of 3 s each
+  EXPECT_EQ(d.baseline_windows, 9u);  // 3 records of 9.75 s: 3 windows of 3 s each
   EXPECT_EQ(d.window_ends.size(), 27u);
   EXPECT_TRUE(d.offline.alerts.empty()) << alerts_text(d.offline);
   // The baseline the grey-box fit reads against the truth (the published parameters).
