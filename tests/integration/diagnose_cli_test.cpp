@@ -190,7 +190,7 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   write_json(files[6], m);
   bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   EXPECT_NE(bad.status, 0);
-  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant model is 'lamstf'"));
 }
 
 std::string file_text(const fs::path& path) {
