@@ -232,7 +232,8 @@ std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& i
       << ", to t = " << number(in.time_to) << " s"
       << (in.clamped_samples
               ? ", " + std::to_string(in.clamped_samples) +
-                    " samples with a controller clamp acting (not exogenous; left out of the window fits and scores)"
+                    " samples with a controller clamp acting (not exogenous: left out of the window fits and scores, "
+                    "except by a method fitting the plant's own equations, e.g. greybox, which keeps them)"
               : std::string())
       << "\n";
   if (const std::size_t n = skipped_total(inputs); n > 0) {

@@ -28,7 +28,6 @@ Experiment record_of(const Record& r, const Settings& s, std::uint64_t seed) {
   return test_support::maglev_record(r.truth, r.rig, run);
 }
 
-
 // The first three records are the baseline; windows of 3 s, laid end to end.
 Diagnosis diagnose(const std::vector<Experiment>& records, const std::string& name) {
   Diagnosis d;
