@@ -64,7 +64,7 @@ class DiagnosticsEngine {
 
   // Marks STALE, at `time`, every parameter of the plant not STALE yet because its estimates
   // stopped for `reason` (e.g. the identifier's windows keep failing), before any timeout; a
-  // plant without estimates yet gets its monitored parameters (monitored_amb1dof_parameters()).
+  // plant without estimates yet gets its family's monitored parameters (plant_families.hpp).
   // Each comes back with its next estimate ("estimates resumed"). Stores and returns the alerts.
   std::vector<Alert> mark_stale(const std::string& plant_id, double time, const std::string& reason);
 

@@ -25,11 +25,6 @@ namespace ambid::diag {
 // controller (it is needed to know its state), or when a controller input is not a signal.
 std::vector<Experiment> split_experiment(const Experiment& experiment, Eigen::Index window_samples);
 
-// Samples dropped from the first window of a record (it starts at the nominal operating point
-// and settles to the plant's own); later windows carry the controller state. deadbeat drops
-// none (its offset term absorbs the shift).
-inline constexpr Eigen::Index kSettlingSamples = 1000;
-
 struct SkippedWindow {
   std::size_t window = 0;  // 1-based within its experiment
   double time = 0.0;       // the window's end
@@ -48,11 +43,12 @@ struct WindowCallbacks {
 };
 
 // Every window of `experiment` (split_experiment, `window_samples` each) identified by
-// `method` (ident::identify_window, kSettlingSamples dropped from the first), stamped with the
+// `method` (ident::identify_window, the family's settling_samples dropped from the first:
+// plant_families.hpp; deadbeat drops none), stamped with the
 // window's end on a clock where the experiment starts at `start`. A window that cannot be
 // identified is skipped with its reason (ident::window_failure), never the end of the run.
-// Throws Error when the method cannot use the experiment at all (ident::require_method_inputs)
-// and what split_experiment throws.
+// Throws Error when the method cannot use the experiment at all (ident::require_method_inputs),
+// when diagnostics does not monitor its plant family, and what split_experiment throws.
 ExperimentWindows identify_experiment_windows(const Experiment& experiment, Eigen::Index window_samples,
                                               const std::string& method, double start, const std::string& plant_id,
                                               Source source, const WindowCallbacks& callbacks = {});

@@ -30,6 +30,9 @@
 // windows reads R1 +20 % as ks -8.2 %, kr -4.2 % where the settled model says -8.7 %, -4.5 %
 // (fault_signatures_identification_test.cpp, within 1 % for R1, R2, kw1, kw2 at -10..+30 %).
 //
+// The single-coil maglev (maglev1coil_voltage) has its own parameters, roles and signatures:
+// maglev_fault_signatures.hpp.
+//
 // Isolation is a matched-subspace (GLR) test over these hypotheses on the normalised
 // deviation vector of every parameter of the plant that is not learning (moved or not, so a
 // fault that predicts a change where none is seen is penalised): among all sets of k
@@ -59,26 +62,15 @@
 #include <vector>
 
 #include "diagnostics/fault_signatures.hpp"
+#include "diagnostics/monitored_parameter.hpp"
 
 namespace ambid::diag {
 
 // True for the effect vocabulary of experiment-format.md and force_factor.
 bool is_known_fault(std::string_view fault);
 
-// The fault a parameter has when it moved alone, and the words for it in a message.
-struct ParameterRole {
-  std::string_view fault;
-  std::optional<int> channel;
-  std::string_view subject;  // "coil 1 resistance"
-};
-// Throws Error naming the parameter and the monitored ones when it is not monitored.
-ParameterRole parameter_role(std::string_view parameter);
-
-// The monitored parameters of amb1dof_voltage: R1 R2 kw1 kw2 kr1 kr2 ks, in the order an
-// estimate window carries them. Defined once, with their roles above (fault_isolation.cpp):
-// diagnostics watches the identified physical quantities that stand for a fault of their own;
-// the others the identifier gives (kr1_emf, kr2_emf) are not watched.
-const std::vector<std::string>& monitored_amb1dof_parameters();
+// The roles of a family's monitored parameters (parameter_role, monitored_parameters) are the
+// family's: plant_families.hpp.
 
 // A parameter of the plant: its relative change from the baseline, (value - baseline)/baseline,
 // and the one-sigma uncertainty of that relative change.
@@ -110,7 +102,11 @@ struct IsolationConfig {
   // this window (measured: R1 +20 % was read "both coils" once in 36 runs with 1).
   double ambiguity = 9.0;
   std::size_t max_faults = 2;
-  std::vector<FaultHypothesis> hypotheses;  // empty: default_fault_hypotheses()
+  // The plant family (plant_families.hpp) whose monitored parameters, roles and default
+  // hypotheses these are.
+  std::string family = "amb1dof_voltage";
+  std::vector<FaultHypothesis> hypotheses;  // empty: the family's default_fault_hypotheses
+
   // tolerance, sigma_floor, ambiguity >= 0, sigma_slack > 0, all finite, max_faults >= 1,
   // every hypothesis a known fault with a signature over the monitored parameters.
   void validate() const;

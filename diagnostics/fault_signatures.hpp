@@ -20,12 +20,18 @@
 // position sensor gain (sensor_gain: the controller and the identifier see g x).
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "core/experiment.hpp"
+#include "diagnostics/monitored_parameter.hpp"
 
 namespace ambid::diag {
+
+// The monitored parameters of amb1dof_voltage (R1 R2 kw1 kw2 kr1 kr2 ks) with their roles, in
+// the order an estimate window carries them (fault_isolation.hpp: why these).
+std::span<const MonitoredParameter> amb1dof_monitored_parameters();
 
 // One way the monitored parameters can move together: d log(identified p) per unit relative
 // change of the fault parameter, for every monitored parameter.

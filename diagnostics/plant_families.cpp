@@ -3,16 +3,32 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/error.hpp"
 #include "diagnostics/audit/maglev_starts.hpp"
+#include "diagnostics/maglev_fault_signatures.hpp"
+#include "identifier/identify_window.hpp"
 #include "plant_sim/families.hpp"
 
 namespace ambid::diag {
 namespace {
 
-// The families whose fault signatures monitor/fault_signatures.cpp derives.
-const std::vector<std::string>& families_with_fault_signatures() {
-  static const std::vector<std::string> names = {"amb1dof_voltage"};
-  return names;
+// The families whose parameters diagnostics monitors (one place: adding a family adds a row).
+const std::vector<MonitoredFamily>& monitored_families() {
+  static const std::vector<MonitoredFamily> families = {
+      {"amb1dof_voltage", amb1dof_monitored_parameters, closed_loop_fault_hypotheses, default_fault_hypotheses,
+       ident::kDefaultWindowMethod, 0.25, 1000},
+      // Records of a few thousand samples at 1.3-4 ms with reference steps every 1.5-2 s: a
+      // window of 3 s holds one or two steps (the grey-box fit needs a change of level for n_x).
+      {"maglev1coil_voltage", maglev_monitored_parameters, maglev_fault_hypotheses, default_maglev_fault_hypotheses,
+       "greybox", 3.0, 0},
+  };
+  return families;
+}
+
+const MonitoredFamily* find_monitored(std::string_view model) {
+  const auto& families = monitored_families();
+  const auto it = std::find_if(families.begin(), families.end(), [&](const auto& f) { return f.name == model; });
+  return it == families.end() ? nullptr : &*it;
 }
 
 // The families whose audit reads starting values from the record.
@@ -28,10 +44,37 @@ void require_diagnostics_piece(const std::string& model, DiagnosticsPiece piece,
   const sim::PlantFamily& family = sim::plant_family(model, who);
   if (piece == DiagnosticsPiece::effect_catalogue && (!family.effect_catalogue || !family.make_extended_plant))
     sim::family_lacks(family, "effect catalogue", who);
-  const auto& signed_families = families_with_fault_signatures();
-  if (piece == DiagnosticsPiece::fault_signatures &&
-      std::find(signed_families.begin(), signed_families.end(), model) == signed_families.end())
+  if (piece == DiagnosticsPiece::fault_signatures && !find_monitored(model))
     sim::family_lacks(family, "fault signatures (nor monitored parameters)", who);
+}
+
+const MonitoredFamily& monitored_family(const std::string& model, const std::string& who) {
+  require_diagnostics_piece(model, DiagnosticsPiece::fault_signatures, who);
+  return *find_monitored(model);
+}
+
+std::vector<std::string> monitored_parameters(const std::string& family) {
+  std::vector<std::string> out;
+  for (const MonitoredParameter& p : monitored_family(family, "diagnostics").monitored()) out.emplace_back(p.parameter);
+  return out;
+}
+
+ParameterRole parameter_role(const std::string& family, std::string_view parameter) {
+  const auto monitored = monitored_family(family, "diagnostics").monitored();
+  for (const MonitoredParameter& p : monitored)
+    if (p.parameter == parameter) return p.role;
+  std::string names;
+  for (const MonitoredParameter& p : monitored) names += (names.empty() ? "" : ", ") + std::string(p.parameter);
+  throw Error("diagnostics: parameter '" + std::string(parameter) + "' is not monitored for " + family +
+              " (monitored: " + names + ")");
+}
+
+std::vector<FaultHypothesis> fault_hypotheses(const Experiment& header, const SignatureOptions& options) {
+  return monitored_family(header.plant.model, "fault signatures").hypotheses(header, options);
+}
+
+const std::vector<FaultHypothesis>& default_fault_hypotheses(const std::string& family) {
+  return monitored_family(family, "fault signatures").default_hypotheses();
 }
 
 const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model, const std::string& who) {

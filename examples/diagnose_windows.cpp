@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
 
@@ -25,11 +26,11 @@ int main(int argc, char** argv) try {
   std::normal_distribution<double> scatter(0.0, 0.002);  // 0.2 % window-to-window scatter
   for (int k = 1; k <= 120; ++k) {
     std::map<std::string, double> physical;
-    for (const std::string& name : ambid::diag::monitored_amb1dof_parameters())
+    for (const std::string& name : ambid::diag::monitored_parameters("amb1dof_voltage"))
       physical[name] = nominal.at(name) * (1.0 + scatter(random));
     if (k > 80) physical["R1"] *= 1.2;  // the coil heats up
-    for (const ambid::diag::Alert& alert :
-         engine.process(ambid::diag::estimate_window(physical, {}, 0.25 * k, "bearing-1", ambid::diag::Source::sim)))
+    for (const ambid::diag::Alert& alert : engine.process(ambid::diag::estimate_window(
+             "amb1dof_voltage", physical, {}, 0.25 * k, "bearing-1", ambid::diag::Source::sim)))
       std::cout << "t=" << alert.time << " s " << to_string(alert.level) << " " << alert.parameter << ": "
                 << alert.message << "\n";
   }

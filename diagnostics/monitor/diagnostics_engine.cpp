@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -55,7 +56,7 @@ DiagnosticsEngine::Series& DiagnosticsEngine::series(SeriesMap& map, const std::
   const Key key{plant_id, parameter};
   auto it = map.find(key);
   if (it == map.end()) {
-    const ParameterRole role = parameter_role(parameter);
+    const ParameterRole role = parameter_role(config_.isolation.family, parameter);
     it = map.emplace(key, Series(SeriesMonitor(config_.monitor, store_.baseline(plant_id, parameter)), role)).first;
   }
   return it->second;
@@ -64,7 +65,7 @@ DiagnosticsEngine::Series& DiagnosticsEngine::series(SeriesMap& map, const std::
 std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> windows) {
   for (const EstimateWindow& w : windows) {
     w.validate();
-    for (const ParameterEstimate& e : w.estimates) parameter_role(e.parameter);
+    for (const ParameterEstimate& e : w.estimates) parameter_role(config_.isolation.family, e.parameter);
   }
   SeriesMap next = series_;
   Batch batch;
@@ -116,7 +117,8 @@ std::vector<Alert> DiagnosticsEngine::mark_stale(const std::string& plant_id, do
   SeriesMap next = series_;
   const bool seen = std::any_of(next.begin(), next.end(), [&](const auto& s) { return s.first.first == plant_id; });
   if (!seen)
-    for (const std::string& parameter : monitored_amb1dof_parameters()) series(next, plant_id, parameter);
+    for (const std::string& parameter : monitored_parameters(config_.isolation.family))
+      series(next, plant_id, parameter);
   Batch batch;
   for (auto& [key, s] : next) {
     if (key.first != plant_id || s.level == Level::stale) continue;
@@ -198,7 +200,7 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
 void DiagnosticsEngine::set_baseline(const std::string& plant_id, const std::string& parameter,
                                      const Baseline& baseline, double time) {
   baseline.validate();
-  const ParameterRole role = parameter_role(parameter);
+  const ParameterRole role = parameter_role(config_.isolation.family, parameter);
   Batch batch;
   batch.baselines.push_back({plant_id, parameter, baseline, time});
   store_.write(batch);

@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "identifier/identify_experiment.hpp"
 
 namespace ambid::diag {
@@ -39,6 +40,7 @@ std::vector<Experiment> split_experiment(const Experiment& experiment, Eigen::In
 ExperimentWindows identify_experiment_windows(const Experiment& experiment, Eigen::Index window_samples,
                                               const std::string& method, double start, const std::string& plant_id,
                                               Source source, const WindowCallbacks& callbacks) {
+  const MonitoredFamily& family = monitored_family(experiment.plant.model, "diagnose");
   ident::IdentifyOptions options = ident::window_identify_options(method);
   ident::require_method_inputs(experiment, method);
   const std::vector<Experiment> parts = split_experiment(experiment, window_samples);
@@ -47,7 +49,7 @@ ExperimentWindows identify_experiment_windows(const Experiment& experiment, Eige
   for (std::size_t i = 0; i < parts.size(); ++i) {
     if (callbacks.progress) callbacks.progress(i, parts.size());
     out.time_to = start + double(i + 1) * double(window_samples) * experiment.sample_time;
-    options.skip_samples = i == 0 && method != "deadbeat" ? kSettlingSamples : 0;
+    options.skip_samples = i == 0 && method != "deadbeat" ? family.settling_samples : 0;
     try {
       out.windows.push_back(estimate_window(ident::identify_window(parts[i], options), out.time_to, plant_id, source));
     } catch (const Error& err) {

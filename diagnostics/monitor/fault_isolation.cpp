@@ -10,27 +10,18 @@
 
 #include "core/error.hpp"
 #include "core/linalg.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
 namespace {
 
-constexpr std::string_view kFaults[] = {"coil_resistance", "amplifier_gain",       "amplifier_bandwidth",
-                                        "eddy_current",    "sensor_delay",         "sensor_gain",
-                                        "flexible_mode",   "magnetic_saturation",  "air_gap",
-                                        "rotor_mass",      "harmonic_disturbance", "force_factor"};
-
-struct Role {
-  std::string_view parameter;
-  ParameterRole role;
-};
-
-// The monitored parameters, in their order, and the role of each (the one list of them).
-const Role kRoles[] = {
-    {"R1", {"coil_resistance", 1, "coil 1 resistance"}},     {"R2", {"coil_resistance", 2, "coil 2 resistance"}},
-    {"kw1", {"amplifier_gain", 1, "amplifier 1 gain"}},      {"kw2", {"amplifier_gain", 2, "amplifier 2 gain"}},
-    {"kr1", {"force_factor", 1, "coil 1 force factor"}},     {"kr2", {"force_factor", 2, "coil 2 force factor"}},
-    {"ks", {"air_gap", std::nullopt, "negative stiffness"}},
-};
+// The effect vocabulary of experiment-format.md (maglev1coil_voltage's additions last) and
+// force_factor.
+constexpr std::string_view kFaults[] = {
+    "coil_resistance", "amplifier_gain", "amplifier_bandwidth",  "eddy_current",
+    "sensor_delay",    "sensor_gain",    "flexible_mode",        "magnetic_saturation",
+    "air_gap",         "rotor_mass",     "harmonic_disturbance", "force_factor",
+    "force_law",       "sensor_offset",  "sensor_nonlinearity",  "actuator_quantisation"};
 
 // The weighted least-squares fit of some hypotheses to the deviations.
 struct Fit {
@@ -103,24 +94,6 @@ bool is_known_fault(std::string_view fault) {
   return std::find(std::begin(kFaults), std::end(kFaults), fault) != std::end(kFaults);
 }
 
-ParameterRole parameter_role(std::string_view parameter) {
-  for (const Role& r : kRoles)
-    if (r.parameter == parameter) return r.role;
-  std::string monitored;
-  for (const Role& r : kRoles) monitored += (monitored.empty() ? "" : ", ") + std::string(r.parameter);
-  throw Error("diagnostics: parameter '" + std::string(parameter) + "' is not monitored (monitored: " + monitored +
-              ")");
-}
-
-const std::vector<std::string>& monitored_amb1dof_parameters() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const Role& r : kRoles) out.emplace_back(r.parameter);
-    return out;
-  }();
-  return names;
-}
-
 void IsolationConfig::validate() const {
   for (const auto& [name, value] :
        {std::pair{"tolerance", tolerance}, {"sigma_floor", sigma_floor}, {"ambiguity", ambiguity}})
@@ -132,7 +105,7 @@ void IsolationConfig::validate() const {
   if (max_faults < 1) throw Error("fault isolation: max_faults must be at least 1");
   for (const FaultHypothesis& h : hypotheses) {
     if (!is_known_fault(h.fault)) throw Error("fault isolation: hypothesis of unknown fault '" + h.fault + "'");
-    for (const std::string& p : monitored_amb1dof_parameters()) {
+    for (const std::string& p : monitored_parameters(family)) {
       const auto it = h.signature.find(p);
       if (it == h.signature.end() || !std::isfinite(it->second))
         throw Error("fault isolation: hypothesis '" + h.subject + "' has no finite signature of " + p);
@@ -144,7 +117,7 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const I
   config.validate();
   std::set<std::string_view> seen;
   for (const Deviation& d : deviations) {
-    parameter_role(d.parameter);
+    parameter_role(config.family, d.parameter);
     if (!seen.insert(d.parameter).second) throw Error("fault isolation: parameter " + d.parameter + " given twice");
     if (!std::isfinite(d.relative) || !(d.relative_sigma >= 0.0) || !std::isfinite(d.relative_sigma))
       throw Error("fault isolation: deviation of " + d.parameter + " is not finite or has a negative sigma (" +
@@ -152,7 +125,8 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const I
   }
   const bool any_moved = std::any_of(deviations.begin(), deviations.end(), [](const Deviation& d) { return d.moved; });
   if (!any_moved) return {};
-  const std::vector<FaultHypothesis>& hyp = config.hypotheses.empty() ? default_fault_hypotheses() : config.hypotheses;
+  const std::vector<FaultHypothesis>& hyp =
+      config.hypotheses.empty() ? default_fault_hypotheses(config.family) : config.hypotheses;
 
   // Fewest faults first: every set of k hypotheses, k = 1, 2, ... max_faults, until one set
   // leaves no moved parameter unexplained.
@@ -207,14 +181,14 @@ std::vector<Isolation> isolate(const std::vector<Deviation>& deviations, const I
       }
     }
     if (!named) {
-      const ParameterRole role = parameter_role(d.parameter);
+      const ParameterRole role = parameter_role(config.family, d.parameter);
       result.push_back({d.parameter, std::string(role.fault), role.channel, std::string(role.subject), false});
       continue;
     }
     const FaultHypothesis& h = hyp[*named];
     // The hypothesis is this parameter's own fault under its own name: the alert needs no more.
-    const bool own =
-        h.own.size() == 1 && h.own.front() == d.parameter && h.subject == parameter_role(d.parameter).subject;
+    const bool own = h.own.size() == 1 && h.own.front() == d.parameter &&
+                     h.subject == parameter_role(config.family, d.parameter).subject;
     result.push_back({d.parameter, h.fault, h.channel, h.subject, !own});
   }
   return result;

@@ -7,7 +7,6 @@
 
 #include "core/error.hpp"
 #include "diagnostics/fault_isolation.hpp"
-#include "diagnostics/plant_families.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "plant_sim/amb1dof_parameters.hpp"
 #include "plant_sim/amb1dof_physical.hpp"
@@ -63,13 +62,29 @@ class SensedPlant : public sim::Plant {
   Eigen::VectorXd state_, input_;
 };
 
+constexpr const char* kAmb1dofFamily = "amb1dof_voltage";
+
+// The monitored parameters of amb1dof_voltage, in their order, and the role of each (the one
+// list of them): the identified physical quantities that stand for a fault of their own; the
+// others the identifier gives (kr1_emf, kr2_emf) are not watched.
+constexpr MonitoredParameter kAmb1dofRoles[] = {
+    {"R1", {"coil_resistance", 1, "coil 1 resistance"}},     {"R2", {"coil_resistance", 2, "coil 2 resistance"}},
+    {"kw1", {"amplifier_gain", 1, "amplifier 1 gain"}},      {"kw2", {"amplifier_gain", 2, "amplifier 2 gain"}},
+    {"kr1", {"force_factor", 1, "coil 1 force factor"}},     {"kr2", {"force_factor", 2, "coil 2 force factor"}},
+    {"ks", {"air_gap", std::nullopt, "negative stiffness"}},
+};
+
 sim::Amb1dofParameters nominal_of(const Experiment& header) {
-  require_diagnostics_piece(header.plant.model, DiagnosticsPiece::fault_signatures, "fault signatures");
+  if (header.plant.model != kAmb1dofFamily)  // this file is the amb1dof_voltage family's
+    throw Error("fault signatures: plant model '" + header.plant.model + "' is not " + kAmb1dofFamily +
+                " (plant_families.hpp fault_hypotheses takes each family's)");
   if (!header.controller) throw Error("fault signatures: the experiment records no controller to close the loop with");
   return sim::Amb1dofParameters::from_map(header.plant.parameters);
 }
 
 }  // namespace
+
+std::span<const MonitoredParameter> amb1dof_monitored_parameters() { return kAmb1dofRoles; }
 
 void SignatureOptions::validate() const {
   if (!(relative_step > 0.0 && relative_step < 0.5))
@@ -120,7 +135,8 @@ std::map<std::string, double> settled_parameters(const Experiment& header,
   const ContinuousSystem sys = ident::amb1dof_physical_coordinates(sim::linearize(plant, lin));
   const auto physical = sim::amb1dof_physical_from_structure(sim::amb1dof_structure_parameters(sys), nominal).to_map();
   std::map<std::string, double> out;
-  for (const std::string& name : monitored_amb1dof_parameters()) out[name] = physical.at(name);
+  for (const MonitoredParameter& p : kAmb1dofRoles)
+    out[std::string(p.parameter)] = physical.at(std::string(p.parameter));
   return out;
 }
 

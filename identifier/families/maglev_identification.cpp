@@ -48,6 +48,16 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
       {"a", v.at("stiffness")}, {"b", v.at("current_gain")}, {"R_over_L", R / L}, {"kw_over_L", kw / L}, {"emf", emf}};
   model.uncertainty["a"] = fit.sigma.at("stiffness");
   model.uncertainty["b"] = fit.sigma.at("current_gain");
+  // The other structure parameters' sigmas by first-order propagation of the physical ones',
+  // taken as independent (the fit gives no covariance between its two steps; R and L share
+  // the coil regression's beta and err together, so the sigma of R/L is an upper bound).
+  const auto& s = fit.sigma;
+  const auto rel = [&](const char* name) { return s.at(name) / v.at(name); };
+  model.uncertainty["R_over_L"] = R / L * std::hypot(rel("R"), rel("L"));
+  model.uncertainty["kw_over_L"] = kw / L * rel("L");
+  model.uncertainty["emf"] = emf * std::sqrt(std::pow(rel("Ke"), 2) + std::pow(rel("rho"), 2) + std::pow(rel("L"), 2) +
+                                             std::pow((1.0 / n_i + std::log(in.i0)) * s.at("n_i"), 2) +
+                                             std::pow(std::log(in.x0) * s.at("n_x"), 2));
   for (const char* name : {"R", "L", "Ke", "Km", "n_i", "n_x", "rho", "unstable_pole"}) {
     model.physical[name] = v.at(name);
     model.uncertainty[name] = fit.sigma.at(name);

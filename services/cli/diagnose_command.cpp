@@ -1,10 +1,13 @@
-// `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files.
-// Each experiment is cut into windows and every window is identified
-// (diagnostics/experiment_windows.hpp identify_experiment_windows; method pem by default:
-// consistent at real sensor noise and off nominal, with sigmas; the baseline's learned
-// window-to-window scatter widens them where they fall short; deadbeat is biased off nominal). A model
-// file is one window. Fault isolation uses the closed-loop signatures of the first
-// experiment's plant and controller (diagnostics/fault_signatures.hpp). The windows of the
+// `ambid diagnose`: offline diagnosis over a time-ordered list of experiments or model files
+// (a directory stands for its experiment sidecars and model files, in name order), all of one
+// plant family: the family brings its monitored parameters, fault signatures, window length
+// and window method (diagnostics/plant_families.hpp). Each experiment is cut into windows and
+// every window is identified (diagnostics/experiment_windows.hpp identify_experiment_windows;
+// amb1dof_voltage: pem by default, consistent at real sensor noise and off nominal, with sigmas;
+// the baseline's learned window-to-window scatter widens them where they fall short; deadbeat
+// is biased off nominal; maglev1coil_voltage: greybox, 3 s windows). A model file is one
+// window. Fault isolation uses the closed-loop signatures of the first experiment's plant and
+// controller (diagnostics/fault_signatures.hpp, maglev_fault_signatures.hpp). The windows of the
 // first N inputs form the baseline, learned by the
 // diagnostics engine (its mean and the scatter the reported sigmas do not explain). Writes DIR/diagnosis.json (the
 // alerts, fields of experiment-format.md "Diagnosis"), DIR/summary.txt, DIR/trend_<parameter>.svg and the trend store
@@ -17,6 +20,7 @@
 // without a continuous-time equivalent, ...), or a model file without a continuous part, is
 // skipped, never the end of the run: said on stderr, counted by reason in diagnosis.json
 // ("skipped_windows", and each input's "skipped" list) and in summary.txt.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +41,6 @@
 #include "core/model_file.hpp"
 #include "core/no_continuous_equivalent.hpp"
 #include "diagnostics/experiment_windows.hpp"
-#include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/identified_estimates.hpp"
 #include "diagnostics/offline_diagnosis.hpp"
 #include "diagnostics/plant_families.hpp"
@@ -57,8 +60,9 @@ constexpr double kModelDuration = 1.0;  // s a model file occupies on the time a
 struct DiagnoseArguments {
   std::vector<std::string> inputs;
   std::size_t baseline = 3;
-  double window = 0.25;
-  std::string method = ident::kDefaultWindowMethod;
+  std::optional<double> window;       // empty: the family's
+  std::optional<std::string> method;  // empty: the family's
+  std::string family;                 // the first input's plant model
   std::string plant_id = "plant";
   std::string out;
   bool quiet = false;  // no progress line on stderr
@@ -92,13 +96,21 @@ bool is_model_file(const std::filesystem::path& path) {
   return j.is_object() && j.contains("format") && j["format"] == kModelFormat;
 }
 
-Input model_input(const std::string& file, double start, const std::string& plant_id) {
-  const Model m = read_model(file);
+// The family of the inputs: every input's plant model must be the first's.
+void require_family(const std::string& file, const std::string& model, const std::string& family) {
   try {
-    diag::require_diagnostics_piece(m.plant_model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
+    diag::require_diagnostics_piece(model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
   } catch (const Error& e) {
-    throw Error(file + ": plant_model is '" + m.plant_model + "': " + e.what());
+    throw Error(file + ": plant model is '" + model + "': " + e.what());
   }
+  if (model != family)
+    throw Error(file + ": plant model is '" + model + "', the first input's is '" + family +
+                "': one diagnosis watches one plant family");
+}
+
+Input model_input(const std::string& file, double start, const std::string& plant_id, const std::string& family) {
+  const Model m = read_model(file);
+  require_family(file, m.plant_model, family);
   Input in{file, "model", {}, {}, start + kModelDuration, std::nullopt};
   if (!m.no_continuous.empty()) {  // a valid discrete model without physical parameters
     in.skipped.push_back(
@@ -109,7 +121,8 @@ Input model_input(const std::string& file, double start, const std::string& plan
     return in;
   }
   try {
-    in.windows.push_back(diag::estimate_window(m.physical, m.uncertainty, in.time_to, plant_id, diag::Source::replay));
+    in.windows.push_back(
+        diag::estimate_window(m.plant_model, m.physical, m.uncertainty, in.time_to, plant_id, diag::Source::replay));
   } catch (const Error& e) {
     throw Error(file + ": " + e.what());
   }
@@ -117,14 +130,10 @@ Input model_input(const std::string& file, double start, const std::string& plan
 }
 
 Input experiment_input(const std::string& file, double start, double window, const std::string& method,
-                       const std::string& plant_id, Progress& progress) {
+                       const std::string& plant_id, const std::string& family, Progress& progress) {
   const ReadResult read = read_experiment(file);
   const Experiment& e = read.experiment;
-  try {
-    diag::require_diagnostics_piece(e.plant.model, diag::DiagnosticsPiece::fault_signatures, "diagnose");
-  } catch (const Error& err) {
-    throw Error(file + ": " + err.what());
-  }
+  require_family(file, e.plant.model, family);
   const double length = double(e.samples()) * e.sample_time;
   const Eigen::Index samples = window > 0.0 ? Eigen::Index(std::lround(window / e.sample_time)) : e.samples();
   Input in{file, "experiment", {}, {}, start, e, read.clamped_samples};
@@ -180,6 +189,9 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
   nlohmann::json j;
   j["format"] = "ambid-diagnosis/1";
   j["plant_id"] = a.plant_id;
+  j["plant_model"] = a.family;
+  j["method"] = a.method.value_or("");
+  j["window"] = a.window.value_or(0.0);
   j["baseline_inputs"] = a.baseline;
   j["baseline_windows"] = baseline_windows;
   j["skipped_windows"] = {{"count", skipped_total(inputs)}, {"reasons", skipped_by_reason(inputs)}};
@@ -211,15 +223,17 @@ nlohmann::json diagnosis_json(const DiagnoseArguments& a, const std::vector<Inpu
 std::string summary_text(const DiagnoseArguments& a, const std::vector<Input>& inputs, std::size_t baseline_windows,
                          const diag::OfflineDiagnosis& d) {
   std::ostringstream s;
-  s << "ambid diagnose: plant '" << a.plant_id << "', " << inputs.size() << " inputs; baseline: the first "
-    << a.baseline << " (" << baseline_windows << " windows)\n\n";
+  s << "ambid diagnose: plant '" << a.plant_id << "' (" << a.family << ", windows of " << number(a.window.value_or(0.0))
+    << " s by " << a.method.value_or("") << "), " << inputs.size() << " inputs; baseline: the first " << a.baseline
+    << " (" << baseline_windows << " windows)\n\n";
   for (const Input& in : inputs)
     s << "  " << in.kind << " " << in.file << ": " << in.windows.size() << " window(s)"
       << (in.skipped.empty() ? std::string() : ", " + std::to_string(in.skipped.size()) + " skipped")
       << ", to t = " << number(in.time_to) << " s"
       << (in.clamped_samples
               ? ", " + std::to_string(in.clamped_samples) +
-                    " samples with a controller clamp acting (not exogenous; left out of the window fits and scores)"
+                    " samples with a controller clamp acting (not exogenous: left out of the window fits and scores, "
+                    "except by a method fitting the plant's own equations, e.g. greybox, which keeps them)"
               : std::string())
       << "\n";
   if (const std::size_t n = skipped_total(inputs); n > 0) {
@@ -291,19 +305,53 @@ void remove_store(const std::filesystem::path& store) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(store.string() + suffix);
 }
 
-void run(const DiagnoseArguments& a) {
+// The inputs with each directory replaced by its experiment sidecars and model files (*.json)
+// in name order.
+std::vector<std::string> expand_directories(const std::vector<std::string>& given) {
+  std::vector<std::string> out;
+  for (const std::string& input : given) {
+    if (!std::filesystem::is_directory(input)) {
+      out.push_back(input);
+      continue;
+    }
+    std::vector<std::string> files;
+    for (const auto& entry : std::filesystem::directory_iterator(input))
+      if (entry.is_regular_file() && entry.path().extension() == ".json") files.push_back(entry.path().string());
+    if (files.empty()) throw Error(input + ": a directory without experiments or model files (*.json)");
+    std::sort(files.begin(), files.end());
+    out.insert(out.end(), files.begin(), files.end());
+  }
+  return out;
+}
+
+// The plant model of an input (a model file's plant_model, an experiment's plant.model).
+std::string plant_model_of(const std::string& file) {
+  if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
+  return is_model_file(file) ? read_model(file).plant_model : read_experiment(file).experiment.plant.model;
+}
+
+void run(DiagnoseArguments a) {
+  a.inputs = expand_directories(a.inputs);
   if (a.baseline >= a.inputs.size())
     throw Error("--baseline " + std::to_string(a.baseline) + " leaves nothing to diagnose: " +
                 std::to_string(a.inputs.size()) + " input(s) given, more than the baseline are needed");
-  if (!(a.window >= 0.0) || !std::isfinite(a.window))
-    throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(a.window));
+  a.family = plant_model_of(a.inputs.front());
+  const std::string& family = a.family;
+  require_family(a.inputs.front(), family, family);
+  const diag::MonitoredFamily& watched = diag::monitored_family(family, "diagnose");
+  const double window = a.window.value_or(watched.window);
+  const std::string method = a.method.value_or(std::string(watched.window_method));
+  a.window = window;
+  a.method = method;
+  if (!(window >= 0.0) || !std::isfinite(window))
+    throw Error("--window must be 0 (whole experiment) or a positive number of seconds, got " + number(window));
   Progress progress("ambid diagnose", a.quiet);
   std::vector<Input> inputs;
   double start = 0.0;
   for (const std::string& file : a.inputs) {
     if (!std::filesystem::exists(file)) throw Error(file + ": no such file");
-    inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id)
-                                         : experiment_input(file, start, a.window, a.method, a.plant_id, progress));
+    inputs.push_back(is_model_file(file) ? model_input(file, start, a.plant_id, family)
+                                         : experiment_input(file, start, window, method, a.plant_id, family, progress));
     start = inputs.back().time_to;
   }
   std::size_t baseline_windows = 0;
@@ -323,12 +371,13 @@ void run(const DiagnoseArguments& a) {
   const std::filesystem::path dir(a.out);
   const report::OutputLock lock(dir);
   diag::EngineConfig config;
+  config.isolation.family = family;
   // Fault signatures of the loop the records came from (the first experiment's plant and
-  // controller); model files alone get those of the loop `ambid sim` runs.
+  // controller); model files alone get those of the family's default loop (`ambid sim`).
   for (const Input& in : inputs) {
     if (!in.loop) continue;
     try {
-      config.isolation.hypotheses = diag::closed_loop_fault_hypotheses(*in.loop);
+      config.isolation.hypotheses = diag::fault_hypotheses(*in.loop);
     } catch (const Error& e) {
       throw Error(in.file + ": no fault signatures of its closed loop: " + e.what());
     }
@@ -369,17 +418,19 @@ void run(const DiagnoseArguments& a) {
 void add_diagnose_command(CLI::App& app) {
   auto args = std::make_shared<DiagnoseArguments>();
   CLI::App* cmd = app.add_subcommand("diagnose", "diagnose a time-ordered list of experiments or model files");
-  cmd->add_option("inputs", args->inputs, "experiments (.json sidecar, .csv or stem) or model.json files, oldest first")
+  cmd->add_option("inputs", args->inputs,
+                  "experiments (.json sidecar, .csv or stem), model.json files or directories of them, oldest first")
       ->required();
   cmd->add_option("--baseline", args->baseline, "how many of the first inputs form the baseline")
       ->capture_default_str();
-  cmd->add_option("--window", args->window, "window length (s) each experiment is cut into; 0: one window each")
-      ->capture_default_str();
+  cmd->add_option("--window", args->window,
+                  "window length (s) each experiment is cut into; 0: one window each (default: the plant family's, "
+                  "amb1dof_voltage 0.25, maglev1coil_voltage 3)");
   cmd->add_option("--method", args->method,
                   "identification of each window: " + ident::method_names(" | ") +
-                      " (below); closed-loop reports no sigma (the baseline scatter is used), deadbeat does but is "
-                      "biased off nominal")
-      ->capture_default_str();
+                      " (below; default: the plant family's, amb1dof_voltage pem, maglev1coil_voltage greybox); "
+                      "closed-loop reports no sigma (the baseline scatter is used), deadbeat does but is biased off "
+                      "nominal");
   cmd->footer("--method:\n" + ident::method_table());
   cmd->add_option("--plant-id", args->plant_id, "plant id in the alerts")->capture_default_str();
   cmd->add_option("--out", args->out, "output directory")->required();

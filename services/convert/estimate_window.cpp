@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <vector>
 
-#include "diagnostics/fault_isolation.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::convert {
 
 diag::EstimateWindow estimate_window(const bus::IdentifiedModel& model, diag::Source source) {
-  const std::vector<std::string>& monitored = diag::monitored_amb1dof_parameters();
+  const std::vector<std::string> monitored = diag::monitored_parameters(model.plant_model);
   diag::EstimateWindow w;
   w.time = model.time;
   w.plant_id = model.plant_id;

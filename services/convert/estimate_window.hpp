@@ -6,8 +6,9 @@
 
 namespace ambid::convert {
 
-// The monitored physical parameters of a model (diagnostics/fault_isolation.hpp) as a window;
-// the others (kr1_emf, ...) are left out.
+// The monitored physical parameters of the model's plant family (diagnostics/plant_families.hpp)
+// as a window; the others (kr1_emf, ...) are left out. Throws Error naming the plant model
+// when diagnostics monitors no parameters of its family.
 diag::EstimateWindow estimate_window(const bus::IdentifiedModel& model, diag::Source source);
 
 }  // namespace ambid::convert

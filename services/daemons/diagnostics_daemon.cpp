@@ -12,7 +12,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
-#include "diagnostics/fault_signatures.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "services/convert/alert.hpp"
 #include "services/convert/estimate_window.hpp"
 #include "services/convert/plant_description.hpp"
@@ -128,12 +128,23 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
     const DescriptionChange change = classify(p.loop ? &*p.loop : nullptr, d);
     if (change == DescriptionChange::same) return;
     diag::EngineConfig c = config.engine;
+    const Experiment header = convert::experiment_header(d);
+    try {  // the family's monitored parameters and roles, or the family named as not monitored
+      diag::monitored_family(header.plant.model, "diagnostics daemon");
+      c.isolation.family = header.plant.model;
+    } catch (const Error& e) {
+      runtime.metrics.rejected.Increment();
+      runtime.log("plant description " + d.description_id + " refused: " + e.what() +
+                  "; its models will be refused too");
+      runtime.set_health(d.plant_id + "/diagnostics", bus::AlertLevel::error, e.what());
+      return;
+    }
     try {
-      c.isolation.hypotheses = diag::closed_loop_fault_hypotheses(convert::experiment_header(d));
+      c.isolation.hypotheses = diag::fault_hypotheses(header);
     } catch (const Error& e) {
       runtime.metrics.rejected.Increment();
       runtime.log("plant description " + d.description_id + ": no fault signatures of its loop (" + e.what() +
-                  "); those of the default loop instead");
+                  "); those of the family's default loop instead");
     }
     if (change == DescriptionChange::bearing) {
       const std::size_t forgotten = store.forget_baselines(d.plant_id);

@@ -12,6 +12,7 @@
 #include "core/no_continuous_equivalent.hpp"
 #include "diagnostics/diagnostics_engine.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::daemons {
 namespace {
@@ -107,8 +108,8 @@ TEST(WindowFailures, BadRulesAreNamed) {
 
 diag::EstimateWindow nominal_window(double time) {
   std::map<std::string, double> physical;
-  for (const std::string& name : diag::monitored_amb1dof_parameters()) physical[name] = 17.5;
-  return diag::estimate_window(physical, {}, time, "bearing-1", diag::Source::sim);
+  for (const std::string& name : diag::monitored_parameters("amb1dof_voltage")) physical[name] = 17.5;
+  return diag::estimate_window("amb1dof_voltage", physical, {}, time, "bearing-1", diag::Source::sim);
 }
 
 std::filesystem::path fresh_store(const std::string& name) {
@@ -131,7 +132,7 @@ TEST(WindowFailures, FailingWindowsMakeTheParametersStaleUntilTheNextEstimate) {
   ASSERT_TRUE(reports_failing_windows(h, "bearing-1"));
 
   const std::vector<diag::Alert> stale = engine.mark_stale("bearing-1", 0.75, "the identifier's " + h.message);
-  ASSERT_EQ(stale.size(), diag::monitored_amb1dof_parameters().size());
+  ASSERT_EQ(stale.size(), diag::monitored_parameters("amb1dof_voltage").size());
   for (const diag::Alert& a : stale) {
     EXPECT_EQ(a.level, diag::Level::stale) << a.parameter;
     EXPECT_EQ(a.time, 0.75);
@@ -154,7 +155,7 @@ TEST(WindowFailures, APlantWithoutEstimatesYetGetsItsParametersMarkedStale) {
   diag::TrendStore store(fresh_store("fresh"));
   diag::DiagnosticsEngine engine(store);
   const std::vector<diag::Alert> stale = engine.mark_stale("bearing-1", 0.0, "windows not identified");
-  ASSERT_EQ(stale.size(), diag::monitored_amb1dof_parameters().size());
+  ASSERT_EQ(stale.size(), diag::monitored_parameters("amb1dof_voltage").size());
   for (const diag::Alert& a : stale) EXPECT_EQ(a.level, diag::Level::stale);
   for (const diag::Alert& a : engine.process(nominal_window(0.25))) EXPECT_EQ(a.level, diag::Level::ok);
 }

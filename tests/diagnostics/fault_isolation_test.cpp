@@ -10,6 +10,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -30,7 +31,7 @@ std::vector<Deviation> deviations(const std::vector<std::pair<std::string, doubl
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> noise(0.0, kSigma);
   std::vector<Deviation> out;
-  for (const std::string& p : monitored_amb1dof_parameters()) {
+  for (const std::string& p : monitored_parameters("amb1dof_voltage")) {
     double relative = noise(rng);
     for (const auto& [subject, change] : faults) relative += change * hypothesis(subject).signature.at(p);
     out.push_back({p, relative, kSigma, std::abs(relative) > 4 * kSigma});
@@ -160,7 +161,7 @@ TEST(FaultIsolation, RefusesBadInput) {
   EXPECT_THROW(isolate({moved("m", 0.1)}), Error);
   EXPECT_THROW(isolate({moved("R1", 0.1), moved("R1", 0.1)}), Error);
   EXPECT_THROW(isolate({{"R1", std::nan(""), 0.0}}), Error);
-  EXPECT_THROW(parameter_role("v5"), Error);
+  EXPECT_THROW(parameter_role("amb1dof_voltage", "v5"), Error);
   IsolationConfig bad;
   bad.sigma_slack = 0.0;
   EXPECT_THROW(isolate({moved("R1", 0.1)}, bad), Error);

@@ -24,7 +24,7 @@ struct NoisyRecord {
   std::uint64_t seed = 1;
 };
 
-// The record (no settling part: the first window drops kSettlingSamples, as for any record
+// The record (no settling part: the first window drops the family's settling_samples, as for any record
 // `ambid diagnose` reads) and its windows of `window` s on a clock where it starts at `start`.
 struct NoisyWindows {
   test_support::Amb1dofRecord record;

@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "diagnostics/identified_estimates.hpp"
+#include "diagnostics/plant_families.hpp"
 #include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
@@ -50,16 +51,16 @@ TEST(EstimateWindow, TakesTheMonitoredParametersWithTheirSigmas) {
     sigma[name] = 0.01 * value;
   }
   physical["kr1_emf"] = 490.0;  // not monitored: left out
-  const EstimateWindow w = estimate_window(physical, sigma, 2.5, "bearing-A", Source::rig);
-  ASSERT_EQ(w.estimates.size(), monitored_amb1dof_parameters().size());
+  const EstimateWindow w = estimate_window("amb1dof_voltage", physical, sigma, 2.5, "bearing-A", Source::rig);
+  ASSERT_EQ(w.estimates.size(), monitored_parameters("amb1dof_voltage").size());
   EXPECT_EQ(w.estimates[0].parameter, "R1");
   EXPECT_DOUBLE_EQ(w.estimates[0].value, 17.5);
   EXPECT_DOUBLE_EQ(w.estimates[0].sigma, 0.175);
   EXPECT_DOUBLE_EQ(w.time, 2.5);
   sigma.erase("ks");
-  EXPECT_THROW(estimate_window(physical, sigma, 2.5, "bearing-A", Source::rig), Error);
+  EXPECT_THROW(estimate_window("amb1dof_voltage", physical, sigma, 2.5, "bearing-A", Source::rig), Error);
   sigma["ks"] = -1.0;  // a sigma must be non-negative (0: not reported)
-  EXPECT_THROW(estimate_window(physical, sigma, 2.5, "bearing-A", Source::rig), Error);
+  EXPECT_THROW(estimate_window("amb1dof_voltage", physical, sigma, 2.5, "bearing-A", Source::rig), Error);
 }
 
 }  // namespace

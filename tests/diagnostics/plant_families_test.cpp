@@ -18,9 +18,27 @@ std::string error_of(const std::string& model, DiagnosticsPiece piece) {
   return "";
 }
 
-TEST(DiagnosticsFamilies, TheBearingHasEveryPiece) {
+TEST(DiagnosticsFamilies, TheBearingAndTheMaglevHaveEveryPiece) {
   EXPECT_EQ(error_of("amb1dof_voltage", DiagnosticsPiece::effect_catalogue), "");
   EXPECT_EQ(error_of("amb1dof_voltage", DiagnosticsPiece::fault_signatures), "");
+  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::fault_signatures), "");
+}
+
+TEST(DiagnosticsFamilies, EachFamilyBringsItsMonitoredParameters) {
+  EXPECT_EQ(monitored_parameters("amb1dof_voltage"),
+            (std::vector<std::string>{"R1", "R2", "kw1", "kw2", "kr1", "kr2", "ks"}));
+  EXPECT_EQ(monitored_parameters("maglev1coil_voltage"), (std::vector<std::string>{"R", "L", "Km", "n_i", "n_x"}));
+  EXPECT_EQ(parameter_role("maglev1coil_voltage", "R").fault, "coil_resistance");
+  EXPECT_EQ(parameter_role("amb1dof_voltage", "R1").channel, 1);
+  try {
+    parameter_role("amb1dof_voltage", "R");
+    ADD_FAILURE() << "R is not a bearing's parameter";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "diagnostics: parameter 'R' is not monitored for amb1dof_voltage (monitored: R1, R2, kw1, kw2, kr1, "
+              "kr2, ks)");
+  }
+  EXPECT_EQ(monitored_family("maglev1coil_voltage", "test").window_method, "greybox");
 }
 
 TEST(DiagnosticsFamilies, EachFamilyBringsItsOwnCatalogue) {
@@ -38,8 +56,8 @@ TEST(DiagnosticsFamilies, EachFamilyBringsItsOwnCatalogue) {
 }
 
 TEST(DiagnosticsFamilies, MissingPiecesAndUnknownFamiliesAreNamed) {
-  EXPECT_EQ(error_of("maglev1coil_voltage", DiagnosticsPiece::fault_signatures),
-            "audit: plant model 'maglev1coil_voltage' has no fault signatures (nor monitored parameters) yet");
+  EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::fault_signatures),
+            "audit: plant model 'lamstf' has no fault signatures (nor monitored parameters) yet");
   EXPECT_EQ(error_of("lamstf", DiagnosticsPiece::effect_catalogue),
             "audit: plant model 'lamstf' has no effect catalogue yet");
   EXPECT_EQ(error_of("lamstf5", DiagnosticsPiece::fault_signatures),

@@ -30,7 +30,8 @@ EstimateWindow SimulatedBearing::estimate(std::size_t n) const {
   options.validation_fraction = 0.0;
   options.jackknife_segments = 0;  // as `ambid diagnose` and the identifier daemon: scatter-based sigmas
   const Model m = ident::identify_experiment(last, options);
-  return estimate_window(m.physical, m.uncertainty, static_cast<double>(n + 1) * window, plant_id, Source::sim);
+  return estimate_window(m.plant_model, m.physical, m.uncertainty, static_cast<double>(n + 1) * window, plant_id,
+                         Source::sim);
 }
 
 SimulatedSequence run_simulated_sequence(const SimulatedBearing& bearing, std::size_t windows,

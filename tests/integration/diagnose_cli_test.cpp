@@ -190,7 +190,7 @@ TEST(DiagnoseCli, AcceptsModelFiles) {
   write_json(files[6], m);
   bad = run_ambid("diagnose" + joined(files) + " --baseline 5 --out " + (dir / "out").string());
   EXPECT_NE(bad.status, 0);
-  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant_model is 'lamstf'"));
+  EXPECT_THAT(bad.output, HasSubstr("model6.json: plant model is 'lamstf'"));
 }
 
 std::string file_text(const fs::path& path) {
@@ -285,12 +285,12 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
     EXPECT_THAT(r.output, HasSubstr("missing.json: no such file"));
   }
   {
-    // A directory named like an experiment (issue 18: it was an internal error, exit 2).
+    // A directory named like an experiment (issue 18: it was an internal error, exit 2); a
+    // directory stands for the experiments in it, and this one has none.
     fs::create_directories(dir / "folder.json");
     const auto r = run_ambid("diagnose" + joined(files) + " " + (dir / "folder.json").string() + out);
     EXPECT_EQ(r.status, 1) << r.output;
-    EXPECT_THAT(r.output, HasSubstr("folder.json"));
-    EXPECT_THAT(r.output, HasSubstr("Is a directory"));
+    EXPECT_THAT(r.output, HasSubstr("folder.json: a directory without experiments or model files (*.json)"));
   }
   {
     const auto r = run_ambid("diagnose" + joined(files) + " --baseline 6" + out);
