@@ -21,7 +21,8 @@ Eigen::MatrixXd rounded_on_grid(const Eigen::MatrixXd& x, const Eigen::VectorXd&
   Eigen::MatrixXd out = x;
   for (Eigen::Index j = 0; j < x.cols(); ++j)
     if (resolution(j) > 0.0)
-      for (Eigen::Index k = 0; k < x.rows(); ++k) out(k, j) = sim::round_to(x(k, j) + offset(j), resolution(j)) - offset(j);
+      for (Eigen::Index k = 0; k < x.rows(); ++k)
+        out(k, j) = sim::round_to(x(k, j) + offset(j), resolution(j)) - offset(j);
   return out;
 }
 

@@ -35,41 +35,12 @@ void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double conf
   }
 }
 
-// The Welch plant FRF of the samples whose first output lies within `band` (a fraction) of its
-// operating value (FrfStructure::operating_band), segments of 256 samples or fewer (down to 64)
-// so that at least 8 fit in the samples kept; `base` gives the lines and the samples left out.
-Frf operating_point_frf(const Experiment& e, WelchFrfOptions base, double band, std::vector<std::string>& notes) {
-  const auto point = e.operating_point.find(e.y_names.front());
-  if (point == e.operating_point.end())
-    throw Error("the record has no operating value of " + e.y_names.front() + " to fit about");
-  const Eigen::VectorXd y = e.y_deviation().col(0);
-  if (base.left_out.empty()) base.left_out.assign(std::size_t(y.size()), false);
-  Eigen::Index kept = 0;
-  for (Eigen::Index k = 0; k < y.size(); ++k) {
-    if (std::abs(y(k)) > band * std::abs(point->second)) base.left_out[std::size_t(k)] = true;
-    if (!base.left_out[std::size_t(k)]) ++kept;
-  }
-  base.segment_samples = 256;
-  while (base.segment_samples > 64 && kept < 8 * base.segment_samples) base.segment_samples /= 2;
-  const WelchFrf w = estimate_welch_frf(e.r_deviation(), e.u_deviation(), e.y_deviation(), base);
-  notes.push_back("structured fit: Welch FRF of the " + std::to_string(kept) + " samples within " +
-                  std::to_string(band * 100.0) + " % of the operating " + e.y_names.front() + " (" +
-                  std::to_string(w.segments) + " segments of " + std::to_string(base.segment_samples) + ")");
-  return w.plant;
-}
-
-// The family's structure on the plant FRF (at the operating point only, when the structure is
-// that of the point: operating_point_frf); a failure is a note.
-void fit_structure(FrfReport& report, const Experiment& e, const WelchFrfOptions& welch) {
+// The family's structure on the plant FRF; a failure is a note.
+void fit_structure(FrfReport& report, const Experiment& e) {
   const IdentificationFamily* family = find_identification_family(e.plant.model);
   if (!family || !family->frf_structure) return;
-  const FrfStructure& structure = family->frf_structure();
   try {
-    report.structured = fit_structured_frf(e,
-                                           structure.operating_band > 0.0
-                                               ? operating_point_frf(e, welch, structure.operating_band, report.notes)
-                                               : report.plant,
-                                           structure);
+    report.structured = fit_structured_frf(e, report.plant, family->frf_structure());
   } catch (const Error& err) {
     report.notes.push_back(std::string("structured fit of ") + e.plant.model + ": " + err.what());
   }
@@ -132,11 +103,6 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
 
   const Eigen::MatrixXd* coherence = nullptr;
   Eigen::MatrixXd welch_coherence;
-  WelchFrfOptions w;
-  w.sample_time = e.sample_time;
-  w.f_min = o.f_min;
-  w.f_max = o.f_max;
-  w.left_out = left_out;
   if (periodic) {
     const Eigen::Index used = periodic->end_sample;
     PeriodicFrfOptions po = periodic->options;
@@ -171,11 +137,16 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.blocks = p.plant.lines();
     report.notes.push_back("stepped sine: one window per frequency; no noise estimate");
   } else {
+    WelchFrfOptions w;
+    w.sample_time = e.sample_time;
     w.segment_samples = o.segment_samples;
     if (w.segment_samples == 0) {
       w.segment_samples = 64;
       while (w.segment_samples * 2 <= e.samples() / 8) w.segment_samples *= 2;
     }
+    w.f_min = o.f_min;
+    w.f_max = o.f_max;
+    w.left_out = left_out;
     const WelchFrf p = estimate_welch_frf(r, u, y, w);
     report.blocks_left_out = p.skipped_segments;
     report.method = "welch";
@@ -216,7 +187,7 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.notes.push_back("no controller recorded: no sensitivity and no controller check");
   }
   if (o.fit) fit_pairs(report, e, o);
-  if (o.fit) fit_structure(report, e, w);
+  if (o.fit) fit_structure(report, e);
   return report;
 }
 

@@ -25,11 +25,6 @@ struct FrfStructure {
   ContinuousSystem (*model)(const Eigen::VectorXd& theta) = nullptr;
   // The derived quantities of theta, in derived_names order.
   Eigen::VectorXd (*derived)(const Eigen::VectorXd& theta) = nullptr;
-  // > 0: the structure is the linearisation at the operating point only (the maglev's a and b
-  // change with the gap: b by 2.3x from 13 to 16 mm), so it is fitted to a Welch FRF of the
-  // samples whose first output lies within this fraction of its operating value (a record of
-  // reference steps: the levels at the operating point; frf_analysis.cpp). 0: the record's FRF.
-  double operating_band = 0.0;
 };
 
 struct StructuredFrfFit {
