@@ -37,7 +37,9 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 // Every effect (and "none") at every sample time; `named` true: the cases the audit names today
 // (asserted), false: the open ones (below, DISABLED_).
 // Measured 2026-12-03 (seed 11). Open, with what the audit says instead:
-// - 4 ms: the clean record is "unexplained" (coherence with r left after the rounding's), and
+// - 4 ms: the clean record is "unexplained" (no finding cuts 10 %, and the nominal residual
+//   fails the check even after the rounding's coherence is taken off; likely the board's clamps,
+//   which act for tens of samples at each step at 4 ms and which the contract's form leaves out), and
 //   the rig loop's own 1 mm step toward the coil at 1.5 s puts the body on the top stop in the
 //   sensor_gain and sensor_delay records (Kp 4 V/mm rings at 4 ms), or the nominal model's
 //   replay hits it (force_law, amplifier_gain, sensor_nonlinearity, harmonic_disturbance);
