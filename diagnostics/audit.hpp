@@ -55,14 +55,14 @@
 // "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below); the
 // nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
-// excited_bins, p_value, consistent, outputs: {"y": {coherence_mean, coherence_z,
+// excited_bins, p_value, consistent, null_replicas, outputs: {"y": {coherence_mean, coherence_z,
 // coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
-// expected under noise); "acceptance" {rule, false_acceptance_probability, z_threshold,
-// residual_rule, residual_alpha}; "frf_ratio" {estimator, segment, lines,
-// nominal|extended: {"y/u": {frequency_hz, magnitude, phase_deg}}} (null when the validation
-// segment is too short); "residual_excitation_correlation" {"y": {"r1": max |corr|}};
-// "amplitude_dependence" {method, determinable, reason, spread, parts [{begin, end,
-// excitation_rms, log_ratio, log_ratio_se}], z, dependent}; "clamped_samples" {count,
+// expected under noise; null_replicas: on a rounded record, the replicas whose coherence with r
+// the rounding alone gives was subtracted, audit_rounding_null.hpp); "acceptance" {rule, false_acceptance_probability,
+// z_threshold, residual_rule, residual_alpha}; "frf_ratio" {estimator, segment, lines, nominal|extended: {"y/u":
+// {frequency_hz, magnitude, phase_deg}}} (null when the validation segment is too short);
+// "residual_excitation_correlation" {"y": {"r1": max |corr|}}; "amplitude_dependence" {method, determinable, reason,
+// spread, parts [{begin, end, excitation_rms, log_ratio, log_ratio_se}], z, dependent}; "clamped_samples" {count,
 // estimation, validation, left_out_of}: the samples where a controller clamp acted (in the
 // record and in each segment), which no fit, score or statistic counts (NRMSE, the fits'
 // residuals, z, the residual check's windows, the correlation with r, the spectra, the FRF
@@ -104,6 +104,10 @@ struct AuditOptions {
   // drift improves it "significantly". A finding there must also lower nrmse_total by at least
   // this fraction of the model it extends; in [0, 1).
   double rounded_min_improvement = 0.1;
+  // On a rounded record, the residual check subtracts the coherence with r that the rounding
+  // alone gives, from this many replicas of the record made from the checked model
+  // (audit_rounding_null.hpp); at least 1.
+  int rounding_replicas = 8;
   double foil_margin = 1.5;  // z by which a cause must beat every significant foil (audit_foils.hpp)
   FitOptions fit;
 };

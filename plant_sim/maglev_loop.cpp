@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <numbers>
 #include <random>
 #include <sstream>
 
@@ -35,7 +36,8 @@ void check(const MaglevParameters& truth, const MaglevRig& rig, const MaglevRunO
                 level);
   if (!(o.step_period >= o.sample_time) || !std::isfinite(o.step_period))
     fail_loop("the step period must be at least one sample", o.step_period);
-  for (const double v : {o.noise_amplitude, o.position_noise, o.current_noise, o.force_noise})
+  for (const double v :
+       {o.noise_amplitude, o.position_noise, o.current_noise, o.force_noise, o.harmonic_force, o.harmonic_frequency})
     if (!(v >= 0.0) || !std::isfinite(v)) fail_loop("noise levels must be >= 0", v);
   if (o.substeps < 1) fail_loop("substeps must be at least 1", o.substeps);
 }
@@ -98,8 +100,10 @@ MaglevRun run_maglev_rig(const MaglevParameters& truth, const MaglevParameters& 
     e.u(k, 0) = round_to(command, rig.log_u);
 
     u(0) = rig.dac(command);
-    w(0) = o.force_noise * normal(rng);
+    const double force = o.force_noise * normal(rng);
     for (int s = 0; s < o.substeps; ++s) {
+      w(0) =
+          force + o.harmonic_force * std::sin(2.0 * std::numbers::pi * o.harmonic_frequency * (e.t(k) + (s + 0.5) * h));
       integrator.integrate_sample(x, u, w, h, 1);
       if (!x.allFinite()) fail_loop("the plant state became non-finite at t", e.t(k) + (s + 1) * h);
       if (x(0) <= truth.x_min || x(0) >= truth.x_max) {
@@ -137,6 +141,7 @@ MaglevRun run_maglev_rig(const MaglevParameters& truth, const MaglevParameters& 
                          {"seed", o.seed},
                          {"substeps", o.substeps},
                          {"noise", {{"x", o.position_noise}, {"i", o.current_noise}, {"Fz", o.force_noise}}},
+                         {"harmonic_force", {{"amplitude", o.harmonic_force}, {"frequency", o.harmonic_frequency}}},
                          {"clamped_samples", run.clamped_samples}};
   if (!run.ended.empty()) extra["simulation"]["ended"] = run.ended;
   attach_rig_controller(e, rig);

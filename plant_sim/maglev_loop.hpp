@@ -32,7 +32,10 @@ struct MaglevRunOptions {
   double position_noise = 0.0;  // std of white sensor noise on y (m), seen by the controller and logged
   double current_noise = 0.0;   // std of white noise on the logged current (A)
   double force_noise = 0.0;     // std of the process force Fz (N), held over a sample
-  int substeps = 20;            // RK4 steps per sample
+  // A periodic force on the body, Fz += harmonic_force sin(2 pi harmonic_frequency t) (N, Hz),
+  // held over each RK4 step at its midpoint (a mains-frequency field, a vibrating stand).
+  double harmonic_force = 0.0, harmonic_frequency = 0.0;
+  int substeps = 20;  // RK4 steps per sample
   std::uint64_t seed = 1;
 };
 

@@ -12,6 +12,7 @@
 #include "diagnostics/audit/audit_mode_search.hpp"
 #include "diagnostics/audit/audit_residual_check.hpp"
 #include "diagnostics/audit/audit_rounding.hpp"
+#include "diagnostics/audit/audit_rounding_null.hpp"
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
@@ -30,12 +31,19 @@ std::vector<bool> left_out_rows(const Segment& segment) {
   return std::vector<bool>(segment.left_out.begin() + segment.begin, segment.left_out.begin() + segment.end);
 }
 
-// The residual check of `residual` (whole record, deviations) on the validation segment,
-// leaving out the windows that hold a clamped sample.
-ResidualCheck validation_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& r_dev, const AuditResult& r,
-                               double alpha) {
-  return residual_check(residual.middleRows(r.validation.begin, r.validation.size()),
-                        r_dev.middleRows(r.validation.begin, r.validation.size()), alpha, left_out_rows(r.validation));
+// The residual check of `residual` (whole record, deviations) of the model with `effects` on
+// the validation segment, leaving out the windows that hold a clamped sample; on a rounded
+// record against the rounding's own coherence with r (audit_rounding_null.hpp).
+ResidualCheck validation_check(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                               const Eigen::MatrixXd& residual, const AuditResult& r, const AuditOptions& options) {
+  const Segment& v = r.validation;
+  std::vector<NullReplica> replicas;
+  if (r.rounded)
+    for (NullReplica& replica : rounding_replicas(measured, effects, options.rounding_replicas))
+      replicas.push_back(
+          {replica.residual.middleRows(v.begin, v.size()), replica.excitation.middleRows(v.begin, v.size())});
+  return residual_check(residual.middleRows(v.begin, v.size()), measured.r_deviation().middleRows(v.begin, v.size()),
+                        options.residual_alpha, left_out_rows(v), replicas);
 }
 
 // The strongest line over the outputs' residuals, each normalised by its measured spread.
@@ -114,7 +122,6 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   const Eigen::Index N = measured.samples();
   const std::vector<sim::EffectSpec>& catalogue = effect_catalogue_of(r.plant_model, "audit");
   const Eigen::MatrixXd residual = r.measured - base_loop.y;
-  const Eigen::MatrixXd r_dev = measured.r_deviation();
 
   // Screening.
   // Zero where a controller clamp acted: the line search sums over the kept samples only.
@@ -184,7 +191,7 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
     f.test = improvement_test(r.measured, base_loop.y, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
     f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
-    f.residual = validation_check(r.measured - loop.y, r_dev, r, options.residual_alpha);
+    f.residual = validation_check(measured, with_base(fit.effect), r.measured - loop.y, r, options);
     scored.push_back({std::move(f), std::move(loop)});
   }
   std::stable_sort(scored.begin(), scored.end(),
@@ -212,6 +219,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     throw Error("audit: foil_margin must be finite, got " + std::to_string(options.foil_margin));
   if (options.max_effects < 1 || options.max_effects > 3)
     throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
+  if (options.rounding_replicas < 1)
+    throw Error("audit: rounding_replicas must be at least 1, got " + std::to_string(options.rounding_replicas));
   if (!(options.rounded_min_improvement >= 0.0 && options.rounded_min_improvement < 1.0))
     throw Error("audit: rounded_min_improvement must be in [0, 1), got " +
                 std::to_string(options.rounded_min_improvement));
@@ -250,7 +259,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
       r.excitation_correlation(j, i) = excitation_correlation(kept_residual.col(j), r_dev.col(i), 50);
   r.false_acceptance = options.false_acceptance;
   r.residual_alpha = options.residual_alpha;
-  r.nominal_check = validation_check(residual, r_dev, r, options.residual_alpha);
+  r.nominal_check = validation_check(measured, {}, residual, r, options);
 
   // Sequential acceptance (forward selection): each round searches on top of the effects taken
   // so far and takes the significant finding of best score; the search goes on while a round
@@ -343,9 +352,14 @@ nlohmann::json check_json(const ResidualCheck& c, const AuditResult& r) {
     outputs[r.outputs[j]] = {
         {"coherence_mean", c.coherence_mean[i]}, {"coherence_z", c.coherence_z[i]}, {"coherence_p", c.coherence_p[i]}};
   }
-  nlohmann::json j = {
-      {"determinable", c.determinable}, {"window", c.window},         {"windows", c.windows}, {"excited_bins", c.bins},
-      {"p_value", c.p_value},           {"consistent", c.consistent}, {"outputs", outputs}};
+  nlohmann::json j = {{"determinable", c.determinable},
+                      {"window", c.window},
+                      {"windows", c.windows},
+                      {"excited_bins", c.bins},
+                      {"p_value", c.p_value},
+                      {"consistent", c.consistent},
+                      {"outputs", outputs},
+                      {"null_replicas", c.null_replicas}};
   if (!c.determinable) j["reason"] = c.reason;
   return j;
 }

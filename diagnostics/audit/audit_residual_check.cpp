@@ -30,12 +30,19 @@ double scaled_chi_square_z(double t, double mean, double variance) {
 }  // namespace
 
 ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha,
-                             const std::vector<bool>& left_out) {
+                             const std::vector<bool>& left_out, const std::vector<NullReplica>& null_replicas) {
   if (!(alpha > 0.0 && alpha < 1.0))
     throw Error("audit: residual check probability must be in (0, 1), got " + std::to_string(alpha));
   if (residual.rows() != excitation.rows() || excitation.cols() < 1)
     throw Error("audit: residual check needs the excitation over the same samples as the residual");
   const Eigen::Index N = residual.rows(), q = residual.cols(), p = excitation.cols();
+  for (const NullReplica& replica : null_replicas)
+    if (replica.residual.rows() != N || replica.residual.cols() != q || replica.excitation.rows() != N ||
+        replica.excitation.cols() != p)
+      throw Error("audit: residual check null replica of " + std::to_string(replica.residual.rows()) + "x" +
+                  std::to_string(replica.residual.cols()) + " residual and " +
+                  std::to_string(replica.excitation.rows()) + "x" + std::to_string(replica.excitation.cols()) +
+                  " excitation for " + std::to_string(N) + "x" + std::to_string(q) + " and " + std::to_string(p));
   if (!left_out.empty() && std::ssize(left_out) != N)
     throw Error("audit: residual check mask of " + std::to_string(left_out.size()) + " entries for " +
                 std::to_string(N) + " samples");
@@ -75,13 +82,29 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
       twiddle(b, k) = std::polar(1.0, -2.0 * std::numbers::pi * double(b * k % L) / double(L));
   Eigen::VectorXd hann(L);
   for (Eigen::Index k = 0; k < L; ++k) hann[k] = 0.5 - 0.5 * std::cos(2.0 * std::numbers::pi * double(k) / double(L));
-  std::vector<Eigen::MatrixXcd> spectra;
-  for (const Eigen::Index start : starts) {
-    Eigen::MatrixXd block(L, q + p);
-    block << residual.middleRows(start, L), excitation.middleRows(start, L);
-    block.rowwise() -= block.colwise().mean();
-    spectra.push_back(twiddle * (hann.asDiagonal() * block).cast<std::complex<double>>());
-  }
+  const auto spectra_of = [&](const Eigen::MatrixXd& e, const Eigen::MatrixXd& x) {
+    std::vector<Eigen::MatrixXcd> out;
+    for (const Eigen::Index start : starts) {
+      Eigen::MatrixXd block(L, q + p);
+      block << e.middleRows(start, L), x.middleRows(start, L);
+      block.rowwise() -= block.colwise().mean();
+      out.push_back(twiddle * (hann.asDiagonal() * block).cast<std::complex<double>>());
+    }
+    return out;
+  };
+  const std::vector<Eigen::MatrixXcd> spectra = spectra_of(residual, excitation);
+  // Sum over the windows of conj(e_j) r in bin b (p entries): the cross-spectrum the check weighs.
+  const auto cross = [&](const std::vector<Eigen::MatrixXcd>& s, Eigen::Index b, Eigen::Index j) {
+    Eigen::VectorXcd sum = Eigen::VectorXcd::Zero(p);
+    for (const auto& w : s) sum += w.block(b, q, 1, p).transpose() * std::conj(w(b, j));
+    return sum;
+  };
+  std::vector<std::vector<Eigen::MatrixXcd>> replica_spectra;
+  for (const NullReplica& replica : null_replicas)
+    replica_spectra.push_back(spectra_of(replica.residual, replica.excitation));
+  c.null_replicas = int(null_replicas.size());
+  // The replicas' mean is itself an estimate: its scatter adds 1/M of the record's.
+  const double inflation = null_replicas.empty() ? 1.0 : 1.0 + 1.0 / double(null_replicas.size());
 
   // Excited bins: every other bin where the excitations' power is >= 1 % of its maximum.
   Eigen::VectorXd r_power = Eigen::VectorXd::Zero(bins);
@@ -120,18 +143,19 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
   for (Eigen::Index j = 0; j < q; ++j) {
     double sum = 0.0, mean = 0.0, variance = 0.0;
     for (const Bin& bin : used) {
-      Eigen::VectorXcd Sre = Eigen::VectorXcd::Zero(p);
+      Eigen::VectorXcd Sre = cross(spectra, bin.b, j);
       double See = 0.0;
-      for (const auto& s : spectra) {
-        const std::complex<double> eb = s(bin.b, j);
-        Sre += s.block(bin.b, q, 1, p).transpose() * std::conj(eb);
-        See += std::norm(eb);
-      }
+      for (const auto& s : spectra) See += std::norm(s(bin.b, j));
       if (!(See > 0.0)) continue;
+      if (!replica_spectra.empty()) {
+        Eigen::VectorXcd expected = Eigen::VectorXcd::Zero(p);
+        for (const auto& s : replica_spectra) expected += cross(s, bin.b, j);
+        Sre -= expected / double(replica_spectra.size());
+      }
       // Sre^H Srr^+ Sre / See ~ Beta(rank, K - rank) under noise independent of r.
       sum += std::clamp(Sre.dot(bin.Srr_pinv * Sre).real() / See, 0.0, 1.0);
-      mean += bin.rank / Kd;
-      variance += bin.rank * (Kd - bin.rank) / (Kd * Kd * (Kd + 1.0));
+      mean += inflation * bin.rank / Kd;
+      variance += inflation * inflation * bin.rank * (Kd - bin.rank) / (Kd * Kd * (Kd + 1.0));
     }
     if (mean > 0.0) {
       c.coherence_mean[j] = sum / double(used.size());

@@ -20,12 +20,28 @@
 // right model is rejected with probability at most alpha. Not covered: structure not coherent with r (a periodic force
 // is the catalogue's harmonic_disturbance; a spectral-line test against neighbouring bins was tried and rejected
 // resonant closed-loop noise spectra, so it is not used).
+//
+// Noise that r itself carries: an excitation reconstructed from a rounded record (r = u - C y_logged,
+// audit_rounding.hpp) holds the controller's answer to the logger's rounding, -C q, while a right model's residual
+// holds q: the two are correlated, and the residual of a right model is coherent with r (at 1.3 ms the rig's
+// derivative gain makes -C q as strong as the excitation: mean coherence 0.46 on a clean record). Then the check
+// takes `null_replicas`: residuals and excitations of M records made from the model itself with the same rounding
+// (audit_rounding_null.hpp). Their mean cross-spectrum per bin is what noise alone gives; it is subtracted from the
+// record's before the coherence is formed. The estimate of a cross-spectrum from K windows scatters about its mean
+// with variance S_ee S_rr / K whatever the coherence (Gaussian signals), so the corrected C_b keeps the null law
+// above, scaled by 1 + 1/M for the replicas' own scatter.
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 namespace ambid::diag {
+
+// A record made from the model with the known noise of the record (e.g. its rounding), replayed like the record:
+// residual (samples x outputs) and excitation (samples x excitations), the same samples as the checked residual.
+struct NullReplica {
+  Eigen::MatrixXd residual, excitation;
+};
 
 struct ResidualCheck {
   bool determinable = false;                       // the segment held at least kMinWindows windows
@@ -36,14 +52,16 @@ struct ResidualCheck {
   Eigen::VectorXd coherence_mean, coherence_z, coherence_p;
   double p_value = 1.0;    // smallest p-value times q (at most 1)
   bool consistent = true;  // p_value >= alpha (or not determinable)
+  int null_replicas = 0;   // records whose mean cross-spectrum with r was subtracted (0: none)
 };
 
 // `residual` (samples x outputs) and `excitation` (samples x excitations): the validation
 // segment, deviations. `left_out` (per sample, or empty): where a controller clamp acted; the
-// windows holding one are left out. Not determinable (and consistent) when fewer than 16
-// windows of 64 samples fit or remain. Error for mismatched rows, no excitation, or alpha
+// windows holding one are left out. `null_replicas` (or none): see above. Not determinable (and consistent) when
+// fewer than 16 windows of 64 samples fit or remain. Error for mismatched rows or columns, no excitation, or alpha
 // outside (0, 1).
 ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::MatrixXd& excitation, double alpha,
-                             const std::vector<bool>& left_out = {});
+                             const std::vector<bool>& left_out = {},
+                             const std::vector<NullReplica>& null_replicas = {});
 
 }  // namespace ambid::diag

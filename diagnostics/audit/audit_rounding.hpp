@@ -14,5 +14,7 @@ namespace ambid::diag {
 // Per output of `e` (y_names order): extra.rig.settings.log_NAME where it is a number > 0,
 // else 0 (full precision).
 Eigen::VectorXd logging_resolution(const Experiment& e);
+// The same for the inputs (u_names order): the rig prints its command at 0.01 V.
+Eigen::VectorXd input_logging_resolution(const Experiment& e);
 
 }  // namespace ambid::diag

@@ -52,6 +52,10 @@ std::vector<sim::Effect> maglev_audit_starts(const Experiment& measured) {
   add("force_law",
       {{"dn_i", fit.physical.at("n_i") - nominal.at("n_i")}, {"dn_x", fit.physical.at("n_x") - nominal.at("n_x")}});
   add("coil_resistance", {{"dR", fit.physical.at("R") - nominal.at("R")}});
+  // The grey-box fit holds kw: an amplifier's gain reads as the resistance with the same
+  // steady current, kw / R = kw' / R_nominal; the validation then tells the two by the coil's
+  // pole R / L, which only the resistance moves.
+  add("amplifier_gain", {{"dkw", nominal.at("kw") * (nominal.at("R") / fit.physical.at("R") - 1.0)}});
   return starts;
 }
 

@@ -1,12 +1,12 @@
 #pragma once
 // Data-driven starting values of the maglev1coil_voltage audit's candidates: the family's
 // grey-box fit (the identifier's method greybox, identifier/plant_families.hpp) reads the force-law exponents and the
-// coil resistance from x, i, u directly, so force_law and coil_resistance start where the data
-// put them, not only at the catalogue's typical sizes (from one of which the two-exponent fit
-// fell into a local minimum that keeps the levels' currents but not the dynamics). Besides:
-// sensor_delay at one and two samples (the catalogue's 3 ms and 0.9 ms lie between the
-// samples of a 1.3 ms rig, where the fit of a whole-sample delay starts on the wrong side of a
-// kink), actuator_quantisation at the step the current reads (audit_quantisation.hpp).
+// coil resistance from x, i, u directly, so force_law and coil_resistance (and amplifier_gain at
+// the gain that gives the same steady current) start where the data put them, not only at the catalogue's typical sizes
+// (from one of which the two-exponent fit fell into a local minimum that keeps the levels' currents but not the
+// dynamics). Besides: sensor_delay at one and two samples (the catalogue's 3 ms and 0.9 ms lie between the samples of
+// a 1.3 ms rig, where the fit of a whole-sample delay starts on the wrong side of a kink), actuator_quantisation at the
+// step the current reads (audit_quantisation.hpp).
 #include <vector>
 
 #include "core/experiment.hpp"

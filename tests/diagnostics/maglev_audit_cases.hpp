@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/experiment.hpp"
+#include "plant_sim/maglev_loop.hpp"
 #include "plant_sim/maglev_parameters.hpp"
 #include "plant_sim/maglev_rig.hpp"
 
@@ -15,16 +16,20 @@ struct MaglevCase {
   std::string effect;  // the catalogue's name; "none" for a clean record
   sim::MaglevParameters truth;
   sim::MaglevRig rig;
+  double harmonic_force = 0.0, harmonic_frequency = 0.0;  // N, Hz: sim::MaglevRunOptions
 };
 
 // The truth with force constant set so that the body hangs at 14 mm with 19 mA (as the rig's).
 sim::MaglevParameters maglev_truth(double n_i, double n_x);
 
-// "none", "sensor_nonlinearity", "force_law", "actuator_quantisation", "sensor_delay",
-// "coil_resistance", "sensor_offset", "sensor_gain" (the last three for the slow sweep).
+// "none" or an effect of the catalogue (maglev_case_effects()).
 MaglevCase maglev_case(const std::string& effect);
 
-// The record of `c` at `sample_time` with `samples` samples (seeded).
-Experiment maglev_case_record(const MaglevCase& c, double sample_time, Eigen::Index samples, std::uint64_t seed);
+// Every effect of the maglev catalogue, in its order (plant_sim/maglev_effects.hpp).
+std::vector<std::string> maglev_case_effects();
+
+// The record of `c` with the run's options (test_support::maglev_run_options) and the case's
+// harmonic force.
+Experiment maglev_case_record(const MaglevCase& c, sim::MaglevRunOptions run);
 
 }  // namespace ambid::diag::testing

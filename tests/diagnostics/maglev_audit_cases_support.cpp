@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "plant_sim/maglev_effects.hpp"
 #include "support/maglev_records.hpp"
 
 namespace ambid::diag::testing {
@@ -15,6 +16,19 @@ sim::MaglevParameters maglev_truth(double n_i, double n_x) {
   p.Ke = p.Km;
   return p;
 }
+
+namespace {
+
+// `p` with its mass scaled by `factor` and the force and back-EMF constants with it (the same
+// gravity balance).
+sim::MaglevParameters with_mass(sim::MaglevParameters p, double factor) {
+  p.m *= factor;
+  p.Km *= factor;
+  p.Ke = p.Km;
+  return p;
+}
+
+}  // namespace
 
 MaglevCase maglev_case(const std::string& effect) {
   MaglevCase c{effect, maglev_truth(1.0, 4.0), {}};
@@ -32,13 +46,28 @@ MaglevCase maglev_case(const std::string& effect) {
     c.rig.sensor_offset = 3e-4;
   else if (effect == "sensor_gain")
     c.rig.sensor_gain = 1.04;
-  else if (effect != "none")
+  else if (effect == "amplifier_gain")
+    c.truth.kw = 1.1;
+  else if (effect == "rotor_mass")  // the force constant still holds the body at 14 mm with 19 mA
+    c = {effect, with_mass(maglev_truth(1.0, 4.0), 1.5), {}};
+  else if (effect == "harmonic_disturbance") {
+    c.harmonic_force = 1e-3;  // 14 % of the body's weight
+    c.harmonic_frequency = 50.0;
+  } else if (effect != "none")
     throw Error("no maglev audit case for '" + effect + "'");
   return c;
 }
 
-Experiment maglev_case_record(const MaglevCase& c, double sample_time, Eigen::Index samples, std::uint64_t seed) {
-  return test_support::maglev_record(c.truth, c.rig, test_support::maglev_run_options(sample_time, samples, seed));
+std::vector<std::string> maglev_case_effects() {
+  std::vector<std::string> names;
+  for (const auto& spec : sim::maglev_effect_catalogue()) names.push_back(spec.name);
+  return names;
+}
+
+Experiment maglev_case_record(const MaglevCase& c, sim::MaglevRunOptions run) {
+  run.harmonic_force = c.harmonic_force;
+  run.harmonic_frequency = c.harmonic_frequency;
+  return test_support::maglev_record(c.truth, c.rig, run);
 }
 
 }  // namespace ambid::diag::testing

@@ -42,10 +42,10 @@ sim::MaglevRunOptions rig_resolution(double ts, Eigen::Index samples, std::uint6
   return run;
 }
 
-// Open (2026-12-03, after merging the rig records' reconstructed r with the rounded-record
-// replay): the right effect is found and cuts the NRMSE 12x (x 0.0653 -> 0.00525), but its
-// residual keeps a coherence with r up to 0.20 (p 1.8e-12), so the cause is "unexplained".
-TEST(MaglevAudit, DISABLED_AHiddenSensorNonlinearityIsNamedAndFitted) {
+// The right effect cuts the NRMSE 12x (x 0.0653 -> 0.00525); its residual's coherence with r
+// (up to 0.20, p 1.8e-12, while the check took r as exogenous) is the logger's rounding, which
+// the residual check now subtracts (audit_rounding_null.hpp).
+TEST(MaglevAudit, AHiddenSensorNonlinearityIsNamedAndFitted) {
   const testing::MaglevCase c = testing::maglev_case("sensor_nonlinearity");  // Hall power law 1.2
   const Experiment e = test_support::maglev_record(c.truth, c.rig, rig_resolution(3.25e-3, 3000, 11));
   const AuditResult r = run_audit(e);
