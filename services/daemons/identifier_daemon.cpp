@@ -16,6 +16,7 @@
 #include "services/daemons/identify_window.hpp"
 #include "services/daemons/sample_gap_report.hpp"
 #include "services/daemons/served_plants.hpp"
+#include "services/daemons/warm_windows.hpp"
 #include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
@@ -118,6 +119,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
     DescribedWindows window;
     WindowFailures failures;
     SampleGapReport gaps;                           // holes in the samples
+    WarmWindows windows;                            // every method but rpem
     std::optional<ContinuousEstimator> continuous;  // method rpem
     std::uint64_t seq = 0;
     bool served_twice = false;
@@ -128,7 +130,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
     if (it == plants.end()) {
       it = plants
                .emplace(id, Plant{DescribedWindows(config.windows), WindowFailures(config.failures, runtime.metrics),
-                                  SampleGapReport(*bus, runtime, id), std::nullopt})
+                                  SampleGapReport(*bus, runtime, id), WarmWindows(config.identify), std::nullopt})
                .first;
       if (config.continuous) it->second.continuous.emplace(*config.continuous);
       runtime.add_node(id + "/identifier");
@@ -154,12 +156,13 @@ int run_identifier_daemon(const DaemonOptions& options) {
       p.gaps.check(batch);
       steps.report(p.window.add(batch), served.single() ? "" : batch.plant_id);
       while (p.window.full()) {
+        const std::string description_id = p.window.current()->description_id;
         const Experiment w = p.window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
           // Only published models are numbered: a gap in seq is a model a consumer missed.
           bus::IdentifiedModel model = p.continuous ? p.continuous->identify(w, batch.plant_id, p.seq)
-                                                    : identify_window(w, batch.plant_id, p.seq, config.identify);
+                                                    : p.windows.identify(w, description_id, batch.plant_id, p.seq);
           ++p.seq;
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
