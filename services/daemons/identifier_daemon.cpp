@@ -16,7 +16,6 @@
 #include "services/daemons/identify_window.hpp"
 #include "services/daemons/sample_gap_report.hpp"
 #include "services/daemons/served_plants.hpp"
-#include "services/daemons/warm_windows.hpp"
 #include "services/daemons/window_failures.hpp"
 #include "services/daemons/window_steps.hpp"
 
@@ -119,7 +118,6 @@ int run_identifier_daemon(const DaemonOptions& options) {
     DescribedWindows window;
     WindowFailures failures;
     SampleGapReport gaps;                           // holes in the samples
-    WarmWindows windows;                            // every method but rpem
     std::optional<ContinuousEstimator> continuous;  // method rpem
     std::uint64_t seq = 0;
     bool served_twice = false;
@@ -130,7 +128,7 @@ int run_identifier_daemon(const DaemonOptions& options) {
     if (it == plants.end()) {
       it = plants
                .emplace(id, Plant{DescribedWindows(config.windows), WindowFailures(config.failures, runtime.metrics),
-                                  SampleGapReport(*bus, runtime, id), WarmWindows(config.identify), std::nullopt})
+                                  SampleGapReport(*bus, runtime, id), std::nullopt})
                .first;
       if (config.continuous) it->second.continuous.emplace(*config.continuous);
       runtime.add_node(id + "/identifier");
@@ -154,15 +152,18 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
       p.gaps.check(batch);
-      steps.report(p.window.add(batch), served.single() ? "" : batch.plant_id);
+      const std::vector<DescribedWindows::Step> added = p.window.add(batch);
+      steps.report(added, served.single() ? "" : batch.plant_id);
+      for (const DescribedWindows::Step& s : added)
+        if (s.event == DescribedWindows::Event::dropped_no_description)
+          p.gaps.dropped(s.samples, s.from, s.to, s.reason);
       while (p.window.full()) {
-        const std::string description_id = p.window.current()->description_id;
         const Experiment w = p.window.take();
         try {
           const auto start = std::chrono::steady_clock::now();
           // Only published models are numbered: a gap in seq is a model a consumer missed.
           bus::IdentifiedModel model = p.continuous ? p.continuous->identify(w, batch.plant_id, p.seq)
-                                                    : p.windows.identify(w, description_id, batch.plant_id, p.seq);
+                                                    : identify_window(w, batch.plant_id, p.seq, config.identify);
           ++p.seq;
           identification_seconds.Observe(seconds_since(start));
           models->write(model);
