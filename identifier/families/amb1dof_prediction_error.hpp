@@ -57,6 +57,11 @@ struct Amb1dofPredictionErrorOptions {
   double max_condition = 1e12;
   Eigen::Index score_block = 100;  // samples per block of the score covariance (10 ms at 10 kHz)
   Eigen::Index min_blocks = 10;    // fewer blocks in the record: InsufficientData
+  // The power of r in its weaker direction (the smaller eigenvalue of the 2 x 2 scatter of r1,
+  // r2) relative to the stronger: below it r1 and r2 move in lockstep up to round-off (a chirp
+  // on both inputs, a multisine period of the Hadamard pattern) and the record cannot tell the
+  // coils apart: InsufficientData. Independent PRBS on both inputs: ~1.
+  double min_excitation_ratio = 1e-6;
   // The residual check (time_domain/residual_independence.hpp): the prediction errors'
   // correlation with the past r at lags 1..residual_lags. A solution whose largest |z| exceeds
   // max_residual_z with a correlation beyond max_residual_correlation is refused and the next

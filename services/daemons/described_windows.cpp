@@ -59,9 +59,10 @@ std::vector<DescribedWindows::Step> DescribedWindows::add(const bus::PlantSample
   waiting_.push_back(b);
   steps.push_back({Event::waiting, "description '" + b.description_id + "' not received yet", 0});
   while (waiting_.size() > settings_.max_waiting_batches) {
+    const bus::PlantSamples& oldest = waiting_.front();
     steps.push_back({Event::dropped_no_description,
-                     "description '" + waiting_.front().description_id + "' did not arrive in time",
-                     waiting_.front().count});
+                     "description '" + oldest.description_id + "' did not arrive in time", oldest.count, oldest.t0,
+                     oldest.t0 + double(oldest.count) * oldest.sample_time});
     waiting_.pop_front();
   }
   return steps;

@@ -37,7 +37,8 @@ class DescribedWindows {
   struct Step {
     Event event;
     std::string reason;
-    std::size_t samples = 0;  // samples dropped by this step (all but added and waiting)
+    std::size_t samples = 0;      // samples dropped by this step (all but added and waiting)
+    double from = 0.0, to = 0.0;  // dropped_no_description: the plant time the dropped samples span
   };
 
   // Error for a window shorter than two samples of any description or a negative settle.

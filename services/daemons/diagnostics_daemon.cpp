@@ -215,13 +215,15 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       const std::optional<double> previous = p.plant_time.last();
       const std::optional<PlantTime::Accepted> at = p.plant_time.accept(m.time, m.window);
       if (!at) continue;  // already processed (a late-joiner replay)
-      auto history_gap = [&](const std::string& message) {
+      // value: the plant seconds the hole spans.
+      auto history_gap = [&](double seconds, const std::string& message) {
         bus::Alert a;
         a.plant_id = m.plant_id;
         a.fault = "history_gap";
         a.parameter = "all";
         a.level = bus::AlertLevel::warn;
         a.time = at->time;
+        a.value = seconds;
         a.message = message.substr(0, bus::limits::text_length);
         alerts->write(a);
         runtime.metrics.published.Increment();
@@ -231,13 +233,15 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
       if (const std::uint64_t missed = p.gaps.missed(m.seq); missed > 0) {
         // This daemon fell behind or was stopped: the models in between are gone for good.
         missed_models.Increment(double(missed));
-        history_gap("missed " + std::to_string(missed) + " identified models (seq " + std::to_string(m.seq - missed) +
-                    " to " + std::to_string(m.seq - 1) + ") before plant time " + std::to_string(m.time) +
-                    " s: a hole in the trend history");
+        history_gap(double(missed) * m.window, "missed " + std::to_string(missed) + " identified models (seq " +
+                                                   std::to_string(m.seq - missed) + " to " + std::to_string(m.seq - 1) +
+                                                   ") before plant time " + std::to_string(m.time) +
+                                                   " s: a hole in the trend history");
       } else if (p.gaps.restarted() && !at->after_restart && previous && at->time - *previous > 4.0 * m.window) {
         // A restarted identifier numbers from 0 again; the plant ran on meanwhile, unidentified.
-        history_gap("the identifier restarted: no models from plant time " + std::to_string(*previous) + " to " +
-                    std::to_string(at->time - m.window) + " s, a hole in the trend history");
+        history_gap(at->time - m.window - *previous,
+                    "the identifier restarted: no models from plant time " + std::to_string(*previous) + " to " +
+                        std::to_string(at->time - m.window) + " s, a hole in the trend history");
       }
       if (at->after_restart) {
         const std::string message = "plant restarted: its model at plant time " + std::to_string(m.time) +

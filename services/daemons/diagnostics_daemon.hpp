@@ -9,7 +9,7 @@
 // A hole in the history is logged and raised as a WARN alert history_gap (parameter "all"):
 // a jump in the model numbers (this daemon fell behind or was stopped; model_gaps.hpp) or a
 // restarted identifier (numbers from 0 again) whose first model comes more than 4 windows of
-// plant time after the last one.
+// plant time after the last one. Its value is the plant seconds the hole spans.
 //
 // One process serves every plant id of its "plants" (served_plants.hpp): each has its own
 // engine (baselines, trend state, loop and fault signatures), clock and model numbering; the

@@ -152,7 +152,11 @@ int run_identifier_daemon(const DaemonOptions& options) {
       runtime.metrics.received.Increment();
       samples_in.Increment(double(batch.count));
       p.gaps.check(batch);
-      steps.report(p.window.add(batch), served.single() ? "" : batch.plant_id);
+      const std::vector<DescribedWindows::Step> added = p.window.add(batch);
+      steps.report(added, served.single() ? "" : batch.plant_id);
+      for (const DescribedWindows::Step& s : added)
+        if (s.event == DescribedWindows::Event::dropped_no_description)
+          p.gaps.dropped(s.samples, s.from, s.to, s.reason);
       while (p.window.full()) {
         const Experiment w = p.window.take();
         try {

@@ -29,7 +29,8 @@
 // The diagnostics daemon marks the parameters STALE on that WARN.
 // Samples that never arrived (a jump in the plant's clock or the batch numbers:
 // sample_gaps.hpp) are logged, counted (ambid_samples_missed_total), set Health WARN and raise
-// a WARN alert history_gap (parameter "samples"): the hole in the history is visible.
+// a WARN alert history_gap (parameter "samples"): the hole in the history is visible. So are
+// samples dropped because their plant description never arrived (described_windows.hpp).
 #include "services/daemons/daemon_options.hpp"
 
 namespace ambid::daemons {

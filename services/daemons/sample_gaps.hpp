@@ -4,8 +4,9 @@
 // sources, so a batch that starts later than the previous one ended, or a jump forward in the
 // batch numbers, is samples this consumer never received (it fell behind, was stopped, or the
 // bus dropped them): a hole in the history it must report. The numbers go through ModelGaps,
-// the diagnostics' rule for the identifier's models. A clock that goes back (a restarted plant
-// daemon) or a new record (seq 0) starts again without a gap.
+// the diagnostics' rule for the identifier's models. A new record (seq 0) starts again without
+// a gap; so does a clock that goes back (a restarted plant daemon), unless its first batch seen
+// is not its first (seq > 0): those missed batches are the gap, on the new clock.
 #include <cstdint>
 #include <optional>
 #include <string>

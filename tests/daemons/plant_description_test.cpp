@@ -101,6 +101,8 @@ TEST(DescribedWindows, BatchesWaitForTheirDescriptionAndAnotherDescriptionRestar
   ASSERT_EQ(dropped.size(), 2u);
   EXPECT_EQ(dropped[1].event, Event::dropped_no_description);
   EXPECT_EQ(dropped[1].samples, 100u);
+  EXPECT_NEAR(dropped[1].from, lqr.t(0), 1e-12);  // batch 0: samples 0..99, plant time of 100 samples
+  EXPECT_NEAR(dropped[1].to, lqr.t(0) + 100 * lqr.sample_time, 1e-12);
   const auto released = w.describe(dl);  // batches 1 and 2 go to a window of the lqr loop
   EXPECT_EQ(released.at(0).event, Event::description_change);
   EXPECT_EQ(w.buffered(), 200);

@@ -76,5 +76,20 @@ TEST(SampleGaps, MalformedBatchesAreIgnored) {
   EXPECT_FALSE(gaps.check(batch(1, 0.05)));  // the state is where the last good batch left it
 }
 
+// A restarted plant (its clock back near 0) whose first batches this consumer missed: the gap
+// is those batches on the new clock (measured in the soak before: "missed 0 samples (plant
+// time 86.25 to 29.8 s, 71 batches)", a negative length).
+TEST(SampleGaps, BatchesMissedAfterAPlantRestartAreAGapOnTheNewClock) {
+  SampleGaps gaps;
+  ASSERT_FALSE(gaps.check(batch(0, 80.0)));
+  ASSERT_FALSE(gaps.check(batch(1, 80.05)));
+  const std::optional<SampleGap> gap = gaps.check(batch(4, 0.2));  // batches 0 .. 3 of the new clock missed
+  ASSERT_TRUE(gap);
+  EXPECT_EQ(gap->batches, 4u);
+  EXPECT_EQ(gap->samples, 2000u);
+  EXPECT_NEAR(gap->from, 0.0, 1e-12);
+  EXPECT_NEAR(gap->to, 0.2, 1e-12);
+}
+
 }  // namespace
 }  // namespace ambid::daemons

@@ -170,6 +170,37 @@ TEST(Amb1dofPredictionError, UnexcitedLoopIsRefused) {
   EXPECT_THROW(fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {d.v}), InsufficientData);
 }
 
+TEST(Amb1dofPredictionError, InputsExcitedInLockstepAreRefused) {
+  // A chirp drives r1 and r2 alike (the weaker direction's power is 0 up to round-off): one
+  // direction of the two coils unexcited; refused before any fit, cold or warm. The same
+  // record with r2 = -r1 (a Hadamard multisine period) too. (Independent PRBS on both inputs:
+  // every other test of this file.)
+  sim::ScenarioOptions s = noisy_scenario(0.3);
+  s.excitation = "chirp";
+  s.f_min = 5;
+  s.f_max = 500;
+  Direct d = direct_inputs(sim::simulate_scenario(s));
+  ASSERT_GT(d.r.col(0).norm(), 0.0);
+  const auto refused = [&](const Eigen::MatrixXd& r) {
+    try {
+      fit_amb1dof_prediction_error(d.y, d.u, r, 1e-4, {d.v});
+      return std::string("accepted");
+    } catch (const InsufficientData& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_NE(refused(d.r).find("r1 and r2 move together"), std::string::npos) << refused(d.r);
+  Eigen::MatrixXd opposite = d.r;
+  opposite.col(1) = -d.r.col(0);
+  EXPECT_NE(refused(opposite).find("r1 and r2 move together"), std::string::npos) << refused(opposite);
+  PemWarmStart warm;
+  warm.v = d.v;
+  EXPECT_THROW(fit_amb1dof_prediction_error_from(d.y, d.u, d.r, 1e-4, warm), InsufficientData);
+  Amb1dofPredictionErrorOptions o;
+  o.min_excitation_ratio = 1.0;
+  EXPECT_THROW(fit_amb1dof_prediction_error(d.y, d.u, d.r, 1e-4, {d.v}, o), Error);
+}
+
 TEST(Amb1dofPredictionError, ResidualCheckPassesTheSolutionAndRefusesAWrongModel) {
   // The solution on a realistic noisy record: prediction errors white and independent of r.
   const Amb1dofRecord record = testing::simulate_amb1dof_record(testing::noisy_record("lqr", 1.0, 9));

@@ -1,5 +1,7 @@
-// Issue 18, the soak: the stack (plant, identifier, diagnostics daemons and a rig emulator, all
-// real processes on their own domain) at 10x real time for AMBID_SOAK_PLANT_SECONDS of plant
+// Issue 18, the soak: the stack as deployed (deploy/config: the bearing at 0.1 um / 1 mA in
+// 10 s records, the identifier's pem on 0.5 s windows, the diagnostics' learning and
+// persistence; plant, identifier, diagnostics daemons and a rig emulator, all real processes
+// on their own domain) but the plant at 10x real time, for AMBID_SOAK_PLANT_SECONDS of plant
 // time (default 3600: 6 minutes of wall time), with seeded random operator commands (source
 // swaps between two simulations, a replayed recording and the rig; excitation changes within
 // the limits), daemon kills and restarts (identifier, plant, rig emulator), a stalled
@@ -8,7 +10,14 @@
 //   - no daemon ended that the test did not kill;
 //   - no false alert: every WARN or ERROR is a history_gap (the bearing never changes);
 //   - no hole in the stored R1 history without an alert that names it: a history_gap or
-//     STALE alert at the hole's plant time, or an identifier's history_gap of the hole's length.
+//     STALE alert at the hole's plant time, or an identifier's history_gap of the hole's length;
+//   - the plant time the history spans is accounted for: windows stored, plus the plant
+//     seconds the history_gap alerts name, plus at most 20 % for what is dropped by design
+//     (each record's 0.25 s settle and its remainder shorter than a window, windows refused).
+// pem does not keep up at 10x on a shared two-core machine (most 0.5 s windows stop at its
+// iteration limit, 0.8-1.6 s of CPU; measured 2026-12-03: 305 windows, 152.5 s, of 2758 s of
+// plant time identified), so most of the history is alerted gaps: the test is about what
+// survives and what is said, not about throughput.
 // Run alone: ctest -R Soak (label slow).
 #include <arpa/inet.h>
 #include <gmock/gmock.h>
@@ -21,6 +30,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -28,6 +38,8 @@
 #include <random>
 #include <set>
 #include <thread>
+
+#include <nlohmann/json.hpp>
 
 #include "diagnostics/trend_store.hpp"
 #include "services/bus/make_bus.hpp"
@@ -37,6 +49,7 @@
 namespace ambid::testing {
 namespace {
 
+namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 constexpr int kDomain = 212;
@@ -107,18 +120,34 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   std::mt19937_64 random(2026);
   const auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random); };
   Stack stack("soak", kDomain);
-  // Every window with its uncertainty (the closed-loop method's segment jackknife): the sources
-  // and excitations below differ in amplitude (0.05-1 V), and a window's scatter with them.
-  std::ofstream(stack.dir() / "identifier.json")
-      << R"({"window": 0.25, "settle": 0.25, "method": "closed-loop", "jackknife": 4})";
-  const std::string scenarios = std::string(AMBID_SOURCE_DIR) + "/tests/integration/scenarios/";
-  const std::string quiet = scenarios + "quiet-bearing.json";
-  const std::string second = (stack.dir() / "quiet-seed-7.json").string();
-  std::ofstream(second) << R"({"name": "quiet-seed-7", "plant": "amb1dof_voltage", "controller": "lqr",
-    "excitation": "prbs", "amplitude": 0.5, "position_noise": 1e-9, "current_noise": 1e-6, "duration": 1.0,
-    "sample_time": 1e-4, "seed": 7})";
+  // The stack as deployed (deploy/config: the bearing at 0.1 um / 1 mA with a 1 V PRBS in 10 s
+  // records, the identifier's method and window, the diagnostics' learning and persistence),
+  // but the plant at 10x real time.
+  const fs::path deploy = fs::path(AMBID_SOURCE_DIR) / "deploy" / "config";
+  const auto deployed = [&](const std::string& name) {
+    return nlohmann::json::parse(std::ifstream(deploy / (name + ".json")));
+  };
+  nlohmann::json plant = deployed("plant");
+  plant["target"] = (deploy / "nominal-bearing.json").string();
+  plant["rig_description"] = (deploy / "rig-description.json").string();
+  plant["speed"] = kSpeed;
+  std::ofstream(stack.dir() / "plant.json") << plant.dump();
+  const nlohmann::json identifier = deployed("identifier");
+  std::ofstream(stack.dir() / "identifier.json") << identifier.dump();
+  nlohmann::json diagnostics = deployed("diagnostics");
+  diagnostics["store"] = stack.store().string();
+  std::ofstream(stack.dir() / "diagnostics.json") << diagnostics.dump();
+  const double window = identifier.at("window").get<double>();
+
+  const std::string nominal = (deploy / "nominal-bearing.json").string();
+  const std::string second = (stack.dir() / "nominal-seed-7.json").string();
+  nlohmann::json seed7 = deployed("nominal-bearing");
+  seed7["name"] = "nominal-seed-7";
+  seed7["seed"] = 7;
+  seed7["amplitude"] = 0.5;
+  std::ofstream(second) << seed7.dump();
   const auto start_rig = [&] {
-    stack.start_process("rig", {"rig-emulator", "--listen", kRigAddress, "--scenario", quiet, "--speed", "10"});
+    stack.start_process("rig", {"rig-emulator", "--listen", kRigAddress, "--scenario", nominal, "--speed", "10"});
   };
 
   AlertListener listener;
@@ -140,7 +169,8 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
 
   sleep_s(3.0);
   const std::string replay = (stack.dir() / "recorded").string();
-  const CommandResult recorded = stack.ambid("record --out " + replay + " --duration 0.5");
+  // Long enough for windows after each pass's settling (0.25 s).
+  const CommandResult recorded = stack.ambid("record --out " + replay + " --duration 3");
   ASSERT_EQ(recorded.status, 0) << recorded.output << stack.log("plant");
 
   Garbage garbage(random);
@@ -152,7 +182,7 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
     for (int k = 0; k < 20; ++k) garbage.send(k % 2 ? kRigPort : dds_first_port + int(random() % 60));
     const int action = int(random() % 100);
     if (action < 30) {  // an operator swaps the source
-      const std::string targets[] = {"sim " + quiet, "sim " + second, "replay " + replay, "rig " + kRigAddress};
+      const std::string targets[] = {"sim " + nominal, "sim " + second, "replay " + replay, "rig " + kRigAddress};
       const std::string target = targets[random() % 4];
       const CommandResult r = stack.ambid("source set " + target);
       ++actions[r.status == 0 ? "swap " + target.substr(0, target.find(' ')) : "swap refused"];
@@ -209,14 +239,15 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   EXPECT_EQ(false_alerts, 0u);
   std::cout << "  history_gap alerts: " << gaps << ", STALE alerts: " << stale << "\n";
 
-  // Every hole in the history named by an alert. Models come every 0.25 s within a record and
-  // 0.5 s across records (the settle): a hole is more than 2 s of plant time without one.
+  // Every hole in the history named by an alert. Models come every window within a record and
+  // 2 windows apart across records (the settle and the record's remainder): a hole is more than
+  // 4 windows of plant time without one.
   const auto r1 = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1");
-  ASSERT_GT(r1.size(), std::size_t(duration));  // the service worked most of the time (3 per s)
+  ASSERT_GE(r1.size(), 2u);
   std::size_t holes = 0;
   for (std::size_t k = 1; k < r1.size(); ++k) {
     const double from = r1[k - 1].time, to = r1[k].time;
-    if (to - from <= 2.0) continue;
+    if (to - from <= 4 * window) continue;
     ++holes;
     bool named = false;
     for (const bus::Alert& a : alerts) {
@@ -227,7 +258,18 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
     }
     EXPECT_TRUE(named) << "no alert names the hole from plant time " << from << " to " << to << " s";
   }
-  std::cout << "  plant time " << r1.back().time << " s, " << r1.size() << " R1 windows, " << holes << " holes\n";
+  // The account of the plant time: the span of the history (the store's clock runs on across
+  // plant restarts, so a killed plant's downtime, when no samples existed, is not in it), the
+  // part its windows cover, the part the history_gap alerts name (their value: plant seconds
+  // lost), and the rest: each record's settle and remainder, windows not identified (STALE).
+  const double span = r1.back().time - r1.front().time + window;
+  const double identified = double(r1.size()) * window;
+  double alerted = 0.0;
+  for (const bus::Alert& a : alerts) alerted += a.fault == "history_gap" ? a.value : 0.0;
+  std::cout << "  plant time " << r1.back().time << " s, history span " << span << " s: " << r1.size()
+            << " R1 windows of " << window << " s (" << identified << " s), history_gap alerts name " << alerted
+            << " s, the rest " << span - identified - alerted << " s; " << holes << " holes\n";
+  EXPECT_LT(span - identified - alerted, 0.2 * span) << "plant time neither identified nor named by a gap alert";
 }
 
 }  // namespace
