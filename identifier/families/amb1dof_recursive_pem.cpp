@@ -107,6 +107,8 @@ Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
 void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   x_ = at_rest(y);
   w_.setZero();
+  drift_.setZero();
+  quiet_ = static_cast<int>(options_.jump_samples) * 4;
   // Where the loop settles after a gap is not known (a fault moves the bias currents): the
   // offsets' variance back up to the start's, so that w, not v, takes the new operating point.
   const Eigen::VectorXd variances = ud_.variances();
@@ -136,6 +138,10 @@ void Amb1dofRecursivePem::detect_jump(const Eigen::Vector3d& e) {
   const double a = 1.0 / options_.jump_samples;
   // Per coil: the coil's v (R and kw: v5, v8 resp. v7, v9) and its offset c.
   constexpr int kCoilParameters[2][3] = {{4, 7, 10}, {6, 8, 11}};
+  if (quiet_ > 0) {
+    --quiet_;
+    return;
+  }
   for (int coil = 0; coil < 2; ++coil) {
     double& drift = drift_(coil);
     drift += a * (e(coil + 1) / std::sqrt(lambda_(coil + 1)) - drift);
