@@ -25,6 +25,7 @@
 #include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/families/amb1dof_recursive_pem.hpp"
 #include "identifier/identify_experiment.hpp"
+#include "identifier/recursive_identification.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
 #include "plant_sim/scenario.hpp"
 #include "services/daemons/continuous_estimator.hpp"
@@ -58,7 +59,8 @@ void BM_RpemUpdate(benchmark::State& state) {
   for (Eigen::Index j = 0; j < 3; ++j) spread(j) = std::sqrt((s.y.col(j).array() - s.y.col(j).mean()).square().mean());
   const ambid::ident::PemWarmStart start =
       ambid::ident::amb1dof_cold_start(ambid::ident::amb1dof_nominal_structure(e, "bench"), spread, e.sample_time);
-  ambid::ident::Amb1dofRecursivePem estimator(start, spread, e.sample_time);
+  ambid::ident::Amb1dofRecursivePem estimator(start, spread, e.sample_time,
+                                              ambid::ident::amb1dof_coil_operating_point(e, "bench"));
   for (auto _ : state) {
     estimator.restart(s.y.row(0).transpose());  // the record again: not a jump of the state
     for (Eigen::Index k = 0; k < s.y.rows(); ++k) estimator.update(s.y.row(k).transpose(), s.u.row(k).transpose());

@@ -48,6 +48,15 @@ nlohmann::json rows(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
+Amb1dofCoilOperatingPoint amb1dof_coil_operating_point(const Experiment& e, const std::string& who) {
+  const auto value = [&](const std::string& name) {
+    const auto it = e.operating_point.find(name);
+    if (it == e.operating_point.end()) throw Error(who + ": the operating point has no " + name);
+    return it->second;
+  };
+  return {value("i1"), value("i2"), value("u1"), value("u2")};
+}
+
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentifyOptions options) : options_(options) {
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0))
     throw Error(kRpemWho + ": forgetting must be in (0, 1], got " + std::to_string(options.forgetting));
@@ -75,7 +84,8 @@ void RecursiveIdentification::add(const Experiment& stretch) {
     o.forgetting = options_.forgetting;
     if (options_.offset_random_walk) o.offset_random_walk = *options_.offset_random_walk;
     if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
-    estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time, o);
+    estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time,
+                                                       amb1dof_coil_operating_point(stretch, kRpemWho), o);
     plant_model_ = stretch.plant.model;
     sample_time_ = stretch.sample_time;
     nominal_ = nominal;
@@ -127,6 +137,7 @@ WindowIdentification RecursiveIdentification::estimate() const {
   model.extra.json()["rpem"] = {{"samples", r.samples()},
                                 {"forgetting", r.forgetting()},
                                 {"projections", r.projections()},
+                                {"jumps", r.jumps()},
                                 {"offset", {offset(0), offset(1), offset(2)}},
                                 {"predictor_gain", rows(r.predictor_gain())},
                                 {"residual_rms", {rms(0), rms(1), rms(2)}}};

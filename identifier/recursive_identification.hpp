@@ -21,6 +21,11 @@
 namespace ambid::ident {
 
 class Amb1dofRecursivePem;
+struct Amb1dofCoilOperatingPoint;
+
+// The currents and voltages of `e`'s operating point (amb1dof_recursive_pem.hpp); Error
+// (prefixed with `who`) naming a missing one.
+Amb1dofCoilOperatingPoint amb1dof_coil_operating_point(const Experiment& e, const std::string& who);
 
 struct RecursiveIdentifyOptions {
   // Memory 1 / (1 - forgetting) samples: 1 s at 10 kHz. 1: a growing memory (the batch limit),

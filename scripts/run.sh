@@ -16,8 +16,8 @@ trap 'deploy/local-stack.sh stop "$domain" "$rundir"' EXIT
 
 echo "== starting the stack on a simulated bearing (DDS domain $domain, loopback, logs in $rundir/)"
 deploy/local-stack.sh start "$domain" "$rundir"
-# The diagnostics learn 20 windows of 0.5 s (deploy/config/diagnostics.json, identifier.json)
-# at half real time (plant.json; pem on each window, identifier.json): about 21 s, longer when it falls behind.
+# The diagnostics learn 20 windows of 0.5 s (deploy/config/diagnostics.json, identifier.json:
+# rpem published every 0.5 s) at real time (plant.json): about 11 s, longer when it falls behind.
 # The fault goes in once the identifier has published 22 models (status), at most 120 s.
 echo "== learning the baseline of the nominal bearing (20 windows)"
 published() {

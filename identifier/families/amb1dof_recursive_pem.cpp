@@ -14,10 +14,22 @@ const std::string kRecursivePemWho = "recursive prediction-error identification"
 constexpr int kThetaGain = 12;  // first K column of theta (K(i, j) at kThetaGain + 3 i + j)
 using Theta = Amb1dofRecursivePem::Parameters;
 
-// theta = [v, w, K] -> the batch predictor's 28 parameters (x0 = 0: the hold does not use it).
-pem::Parameters batch_parameters(const Theta& theta) {
+// The model's [v; w] from theta's [v; c] (amb1dof_recursive_pem.hpp): w2 = c2 - v5 i1o + v8 u1o,
+// w3 = c3 - v7 i2o + v9 u2o.
+Eigen::Matrix<double, 12, 12> coil_offset_map(const Amb1dofCoilOperatingPoint& op) {
+  Eigen::Matrix<double, 12, 12> map = Eigen::Matrix<double, 12, 12>::Identity();
+  map(10, 4) = -op.i1;
+  map(10, 7) = op.u1;
+  map(11, 6) = -op.i2;
+  map(11, 8) = op.u2;
+  return map;
+}
+
+// The model [v, w] and the gain of theta -> the batch predictor's 28 parameters (x0 = 0: the
+// hold does not use it).
+pem::Parameters batch_parameters(const Eigen::Matrix<double, 12, 1>& model, const Theta& theta) {
   pem::Parameters out = pem::Parameters::Zero();
-  out.head<pem::kModel>() = theta.head<pem::kModel>();
+  out.head<pem::kModel>() = model;
   out.tail<12>() = theta.tail<12>();
   return out;
 }
@@ -40,9 +52,11 @@ Eigen::Vector4d at_rest(const Eigen::Vector3d& y) { return {y(0), 0.0, y(1), y(2
 }  // namespace
 
 Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen::Vector3d& spread, double sample_time,
+                                         const Amb1dofCoilOperatingPoint& operating_point,
                                          const Amb1dofRecursivePemOptions& options)
     : options_(options),
       sample_time_(sample_time),
+      model_map_(coil_offset_map(operating_point)),
       ud_([&] {
         if (!start.v.allFinite() || (start.v.array() == 0.0).any() || !start.offset.allFinite() ||
             !start.predictor_gain.allFinite())
@@ -63,10 +77,14 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
       !(options.startup_forgetting > 0.0 && options.startup_forgetting <= 1.0))
     throw Error(kRecursivePemWho + ": forgetting factors must be in (0, 1]");
   if (!(options.offset_random_walk >= 0.0)) throw Error(kRecursivePemWho + ": offset_random_walk must be >= 0");
-  if (!(options.startup_samples >= 1.0) || options.relinearise_samples < 1 || !(options.prior_weight_samples >= 1.0))
-    throw Error(kRecursivePemWho + ": startup_samples, relinearise_samples and prior_weight_samples must be >= 1");
+  if (!(options.startup_samples >= 1.0) || options.relinearise_samples < 1 || !(options.prior_weight_samples >= 1.0) ||
+      !(options.jump_samples >= 1.0))
+    throw Error(kRecursivePemWho +
+                ": startup_samples, relinearise_samples, prior_weight_samples and jump_samples must be >= 1");
+  if (!(options.jump_threshold > 0.0)) throw Error(kRecursivePemWho + ": jump_threshold must be > 0");
+  if (!model_map_.allFinite()) throw Error(kRecursivePemWho + ": the operating point's i1, i2, u1, u2 must be finite");
   theta_.head<9>() = start.v;
-  theta_.segment<3>(9) = start.offset;
+  theta_.segment<3>(9) = start.offset - model_map_.bottomLeftCorner<3, 9>() * start.v;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) theta_(kThetaGain + 3 * i + j) = start.predictor_gain(i, j);
   scale_ = parameter_scale(theta_, spread);
@@ -76,7 +94,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
 }
 
 Eigen::Matrix<double, 4, 3> Amb1dofRecursivePem::predictor_gain() const {
-  return pem::gain_of(batch_parameters(theta_));
+  return pem::gain_of(batch_parameters(model(), theta_));
 }
 
 Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
@@ -89,6 +107,8 @@ Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
 void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   x_ = at_rest(y);
   w_.setZero();
+  drift_.setZero();
+  quiet_ = static_cast<int>(options_.jump_samples) * 4;
   // Where the loop settles after a gap is not known (a fault moves the bias currents): the
   // offsets' variance back up to the start's, so that w, not v, takes the new operating point.
   const Eigen::VectorXd variances = ud_.variances();
@@ -114,11 +134,38 @@ void Amb1dofRecursivePem::relax(double carry) {
   s2_ *= carry * carry;
 }
 
+void Amb1dofRecursivePem::detect_jump(const Eigen::Vector3d& e) {
+  const double a = 1.0 / options_.jump_samples;
+  // Per coil: the coil's v (R and kw: v5, v8 resp. v7, v9) and its offset c.
+  constexpr int kCoilParameters[2][3] = {{4, 7, 10}, {6, 8, 11}};
+  if (quiet_ > 0) {
+    --quiet_;
+    return;
+  }
+  for (int coil = 0; coil < 2; ++coil) {
+    double& drift = drift_(coil);
+    drift += a * (e(coil + 1) / std::sqrt(lambda_(coil + 1)) - drift);
+    if (!(std::abs(drift) > options_.jump_threshold)) continue;
+    // A jump: the coil's parameters get back at least the start's variance, so that the data
+    // after it fix the new balance of the coil equation before anything else moves.
+    const Eigen::VectorXd variances = ud_.variances();
+    for (const int k : kCoilParameters[coil]) {
+      const double prior = k < 9 ? options_.prior_relative_sigma * options_.prior_relative_sigma : 1.0;
+      if (!(variances(k) < prior)) continue;
+      Theta along = Theta::Unit(k);
+      ud_.add(prior - variances(k), along);
+    }
+    drift = 0.0;
+    ++jumps_;
+  }
+}
+
 void Amb1dofRecursivePem::relinearise() {
   since_relinearise_ = 0;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    reference_ = pem::zero_order_hold(batch_parameters(theta_), sample_time_, true);
-    gain_ = pem::gain_of(batch_parameters(theta_));
+    const pem::Parameters batch = batch_parameters(model(), theta_);
+    reference_ = pem::zero_order_hold(batch, sample_time_, true);
+    gain_ = pem::gain_of(batch);
     Eigen::Matrix4d F = reference_.Ad;
     for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
     const bool stable = F.allFinite() && linalg::spectral_radius(F) < options_.max_predictor_radius;
@@ -129,14 +176,14 @@ void Amb1dofRecursivePem::relinearise() {
     restart({x_(0), x_(2), x_(3)});
   }
   checked_ = theta_;
-  reference_model_ = theta_.head<pem::kModel>();
+  reference_model_ = model();
   hold_ << reference_.Ad, reference_.Bd;
 }
 
 void Amb1dofRecursivePem::set_model() {
   hold_ << reference_.Ad, reference_.Bd;
-  for (int k = 0; k < pem::kModel; ++k)
-    hold_ += (theta_(k) - reference_model_(k)) * reference_.derivative.block<4, 7>(4 * k, 0);
+  const Eigen::Matrix<double, 12, 1> change = model() - reference_model_;
+  for (int k = 0; k < pem::kModel; ++k) hold_ += change(k) * reference_.derivative.block<4, 7>(4 * k, 0);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) gain_(i, j) = theta_(kThetaGain + 3 * i + j);
 }
@@ -149,6 +196,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   forgetting_ += approach * (options_.forgetting - forgetting_);
   s1_ = lambda * s1_ + 1.0;
   s2_ = lambda * lambda * s2_ + 1.0;
+  detect_jump(e);
   lambda_ += (e.cwiseAbs2() - lambda_) / s1_;
 
   // The 3 outputs as scalar measurements of the linearised error e_j(theta) ~ e_j - psi_j' dtheta.
@@ -157,6 +205,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
     Theta along = Theta::Unit(k);
     ud_.add(options_.offset_random_walk, along);
   }
+
   Theta step = Theta::Zero(), h, gain;
   for (int j = 0; j < 3; ++j) {
     h = w_.row(pem::kMeasured[std::size_t(j)]).transpose().cwiseProduct(scale_);
@@ -176,7 +225,9 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   next.noalias() = F * w_;
   Eigen::Matrix<double, 4 * pem::kModel, 1> model_terms;
   model_terms.noalias() = reference_.derivative * z;
-  next.leftCols<pem::kModel>() += Eigen::Map<const Eigen::Matrix<double, 4, pem::kModel>>(model_terms.data());
+  // d/dv, d/dw of the hold's terms, then by the chain rule d/dv, d/dc.
+  next.leftCols<pem::kModel>().noalias() +=
+      Eigen::Map<const Eigen::Matrix<double, 4, pem::kModel>>(model_terms.data()) * model_map_;
   for (int i = 0; i < 4; ++i) next.block<1, 3>(i, kThetaGain + 3 * i) += e.transpose();
   w_ = next;
   x_ = hold_ * z + gain_ * e;

@@ -4,7 +4,19 @@
 // amb1dof_voltage structure (seed 000 eq. 4): the same model as the batch method
 // (amb1dof_prediction_error.hpp, amb1dof_predictor.hpp),
 //   x^[t+1] = Ad(v) x^[t] + Bd(v) u[t] + g(v, w) + K e[t],   e[t] = y[t] - C x^[t],
-// with theta = [v1..v9, w (3), K (4 x 3)] (24 parameters) updated at every sample:
+// with theta = [v1..v9, c (3), K (4 x 3)] (24 parameters) updated at every sample, where the
+// offsets of the coil rows are those of the coil equations in whole currents and voltages:
+//   w1 = c1,   w2 = c2 - v5 i1o + v8 u1o,   w3 = c3 - v7 i2o + v9 u2o
+// (i1o, i2o, u1o, u2o: the operating point the deviations are taken from). A coil obeys
+// L di/dt = -R i + kw u + ... for its whole current, so c2, c3 are only what the coil law
+// leaves (an amplifier's or a current sensor's offset, 0 on an ideal bearing) and stay put
+// when a fault moves the loop's rest point, while a change of R or kw changes w2 or w3 through
+// the bias current or voltage that it multiplies. With w2, w3 as free offsets instead, a step
+// of R1 +20 % showed first as a drift of i1 with no regressor but the offset and i1's own
+// deviation, which after the fault is negative (the loop settles at lower bias currents):
+// v5 was driven down, R1 read -74 % in the running stack and -80 % to -240 % offline for 1-2 s
+// before the offsets caught up (a faster random walk of w made it worse).
+// The update at every sample:
 //   e[t]    = y[t] - C x^[t]                       (x^ and psi from theta[t-1])
 //   psi[t]  = C W[t]  (= -de/dtheta)
 //   Lambda  <- Lambda + (e e' - Lambda) / S1[t]    (each output's prediction-error variance)
@@ -30,8 +42,17 @@
 // (= P for lambda = 1, P (1 - lambda) / (1 - lambda^2) ~ P / 2 at a long fixed memory).
 // Like the batch sigma it excludes model-structure error (the nonlinearity at large excitation).
 //
-// The offsets w also follow a random walk (offset_random_walk): P <- P + Q for w, as in a
+// The offsets c also follow a random walk (offset_random_walk): P <- P + Q for c, as in a
 // Kalman filter of drifting parameters.
+//
+// Jumps (change detection and covariance resetting, Ljung & Gunnarsson 1990 sec. 4): a fault
+// moves the balance -v5 i1o + v8 u1o + c2 of a coil row, which the data before it pinned far
+// more tightly than the coil's time constant (the scale of v5 and v8 together). Left alone, the
+// persistent prediction error after a step of R1 pushed the estimate along that looser
+// direction: v5 and v8 fell together to ~10 % for a second (R1 read -88 %) while a slow coil
+// and the predictor gain K explained the drift. A coil's prediction errors that stay on one
+// side (their mean over jump_samples beyond jump_threshold rms) give that coil's v and c the
+// start's variance back, so the new balance is found within milliseconds (counted in jumps()).
 //
 // Predictor stability (Ljung's projection): at every relinearisation the spectral radius of
 // Ad - K C is checked; an unstable predictor (or a non-finite error) puts theta back to the
@@ -47,6 +68,11 @@
 
 namespace ambid::ident {
 
+// The operating point the deviations y, u are taken from (the experiment's operating_point).
+struct Amb1dofCoilOperatingPoint {
+  double i1 = 0.0, i2 = 0.0, u1 = 0.0, u2 = 0.0;  // A, V
+};
+
 struct Amb1dofRecursivePemOptions {
   double forgetting = 0.9999;          // lambda_inf: memory 1 / (1 - lambda) samples (1 s at 10 kHz)
   double startup_forgetting = 0.995;   // lambda_0
@@ -54,12 +80,19 @@ struct Amb1dofRecursivePemOptions {
   int relinearise_samples = 1000;      // exact zero-order hold and derivatives this often
   double prior_relative_sigma = 0.3;   // of each start v (and 100 % of each K entry, w ~ its scale)
   double prior_weight_samples = 10.0;  // the start's Lambda counts as this many samples
-  // Variance per sample of a random walk of each offset w (in units of its scale, see below):
-  // the operating point moves with a fault (a hot coil settles at other bias currents), and w
-  // must follow it first; with forgetting alone the step is explained by v5, v8 (which multiply
-  // the same constant deviations) and the estimate wanders far off (R1 -70 % for seconds at
-  // lambda 0.9999) before w moves. 1e-3: w can move one scale unit in ~0.1 s.
+  // Variance per sample of a random walk of each offset c (in units of its scale: |v1| times
+  // the spread of x, |v5| resp. |v7| times that of i1 resp. i2): a slow drift of a sensor's or
+  // amplifier's offset. 1e-4: c can move one scale unit in ~1 s.
   double offset_random_walk = 1e-4;
+  // Jump detection per coil (i1, i2): an exponential mean over `jump_samples` samples of the
+  // coil's prediction errors in units of their rms (sigma sqrt(1 / (2 jump_samples - 1)) for
+  // white errors, 0.1 at 50); beyond `jump_threshold` the coil's v and c get back at least the
+  // start's variance (see "Jumps" above). The errors are not quite white: at 0.8 it fired
+  // falsely on the PID loop (64 s at 0.1 um / 1 mA), doubling the scatter of R1, R2 per 1 s
+  // window; at 1.2 never there, and a step of R1 +20 % is still caught (its errors stay at
+  // several rms for tens of ms).
+  double jump_samples = 50.0;
+  double jump_threshold = 1.2;
   // Of the predictor Ad - K C at a relinearisation: at or above it the update is rejected.
   double max_predictor_radius = 0.9999;
 };
@@ -71,15 +104,18 @@ class Amb1dofRecursivePem {
 
   // From `start` (v non-zero and finite, w, K; e.g. the nominal model with its Kalman gain,
   // or a batch fit), `spread` the typical size of each output [x, i1, i2] (> 0: the scale of
-  // the parameters and the start's Lambda). Throws Error for an invalid start or options.
+  // the parameters and the start's Lambda), `operating_point` that of the deviations. Throws
+  // Error for an invalid start, operating point or options.
   Amb1dofRecursivePem(const PemWarmStart& start, const Eigen::Vector3d& spread, double sample_time,
-                      const Amb1dofRecursivePemOptions& options = {});
+                      const Amb1dofCoilOperatingPoint& operating_point, const Amb1dofRecursivePemOptions& options = {});
 
   // One sample: y = [x, i1, i2], u = [u1, u2] (the same deviations as the batch method).
   void update(const Eigen::Vector3d& y, const Eigen::Vector2d& u);
   // After a gap in the samples: x^ restarts at y (at rest) and the sensitivities at zero, the
   // offsets' variance at least that of the start (the operating point may have moved); theta,
-  // the rest of P and Lambda are kept.
+  // the rest of P and Lambda are kept. The jump detection pauses for 4 jump_samples: the
+  // restart's own transient (the velocity is not measured) is no jump (it took R1 of the first
+  // window after the stack's swap to -5.8 % instead of +11 %).
   void restart(const Eigen::Vector3d& y);
   // Between two published estimates: the information of every sample so far about v and w is
   // scaled by `carry` (0 < carry <= 1; the variance of each of v1..v9, w1..w3 grows by a random
@@ -94,23 +130,27 @@ class Amb1dofRecursivePem {
   void relax(double carry);
 
   Eigen::Matrix<double, 9, 1> v() const { return theta_.head<9>(); }
-  Eigen::Matrix<double, 9, 9> covariance() const;  // of v, one-sigma^2 (see above)
-  Eigen::Vector3d offset() const { return theta_.segment<3>(9); }
+  Eigen::Matrix<double, 9, 9> covariance() const;               // of v, one-sigma^2 (see above)
+  Eigen::Vector3d offset() const { return model().tail<3>(); }  // w of the model (above)
   Eigen::Matrix<double, 4, 3> predictor_gain() const;
   Eigen::Vector3d residual_rms() const { return lambda_.cwiseSqrt(); }  // [x, i1, i2]
   const UdCovariance& factor() const { return ud_; }
   std::uint64_t samples() const { return samples_; }
   std::uint64_t projections() const { return projections_; }
+  std::uint64_t jumps() const { return jumps_; }     // jumps detected (both coils)
   double forgetting() const { return forgetting_; }  // lambda at the last sample
   double sample_time() const { return sample_time_; }
 
  private:
+  Eigen::Matrix<double, 12, 1> model() const { return model_map_ * theta_.head<12>(); }  // v, w
+  void detect_jump(const Eigen::Vector3d& e);
   void relinearise();
   void set_model();  // Ad, Bd and K of theta_ from the reference hold and its derivatives
 
   Amb1dofRecursivePemOptions options_;
   double sample_time_;
   Parameters theta_, scale_, checked_;
+  Eigen::Matrix<double, 12, 12> model_map_;  // [v; w] = model_map_ [v; c]
   UdCovariance ud_;
   Eigen::Vector3d lambda_;  // diagonal of Lambda
   double s1_, s2_ = 0.0, forgetting_;
@@ -120,7 +160,9 @@ class Amb1dofRecursivePem {
   Eigen::Matrix<double, 12, 1> reference_model_;  // v, w at the reference hold
   Eigen::Matrix<double, 4, 7> hold_;              // [Ad Bd] of theta_
   pem::Gain gain_;
-  std::uint64_t samples_ = 0, projections_ = 0;
+  Eigen::Vector2d drift_ = Eigen::Vector2d::Zero();  // of the jump detection, per coil
+  int quiet_ = 0;                                    // samples until the jump detection resumes after a restart
+  std::uint64_t samples_ = 0, projections_ = 0, jumps_ = 0;
   int since_relinearise_ = 0;
   bool started_ = false;
 };

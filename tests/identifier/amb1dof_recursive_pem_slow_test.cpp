@@ -17,6 +17,7 @@
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/families/amb1dof_recursive_pem.hpp"
+#include "identifier/recursive_identification.hpp"
 #include "identifier/time_domain/loop_signals.hpp"
 
 namespace ambid::ident {
@@ -34,7 +35,7 @@ TEST(RecursivePemSlow, CovarianceFactorStaysPositiveDefiniteOverAMillionSamples)
     spread(j) = std::sqrt((head - head.mean()).square().mean());
   }
   Amb1dofRecursivePem estimator(amb1dof_cold_start(amb1dof_nominal_structure(e, "test"), spread, e.sample_time), spread,
-                                e.sample_time);
+                                e.sample_time, amb1dof_coil_operating_point(e, "test"));
   const Amb1dofNominal nominal = amb1dof_nominal(e, "test");
   const Eigen::Matrix<double, 9, 1> scale = amb1dof_physical_scale(nominal.L1, nominal.L2, nominal.m);
   double worst_condition = 0.0, worst_error = 0.0;

@@ -1,6 +1,6 @@
 // The stack at a real bearing's sensor noise, configured as deploy/config runs it: the bearing
 // of tests/integration/scenarios/noisy-bearing.json (0.1 um on x, 1 mA on each current, 1 V
-// PRBS, 10 s records), pem on 0.5 s windows (each record's first 0.25 s dropped), the deploy
+// PRBS, 10 s records), rpem published every 0.5 s (each record's first 0.25 s dropped), the deploy
 // diagnostics settings. The source is swapped to the same bearing with R1 +10 %
 // (noisy-coil1-hot10.json): the ERROR naming coil 1 resistance must come within 10 s of plant
 // time after the swap, and no alert but OK before it. Slow label: it needs the identifier to
@@ -32,9 +32,8 @@ double number_after(const std::string& text, const std::string& key, std::size_t
   return at == std::string::npos ? std::nan("") : std::stod(text.substr(at + key.size()));
 }
 
-// The plant at `speed` times real time (deploy/config's 0.5: pem takes ~0.6 s of CPU per 0.5 s
-// window, most of them at its iteration limit), the identifier and diagnostics daemons as
-// deploy/config.
+// The plant at `speed` times real time (0.5: room for a loaded machine; pem, deployed before,
+// took ~0.6 s of CPU per 0.5 s window), the identifier and diagnostics daemons as deploy/config.
 void configure_noisy_stack(const Stack& stack, double speed) {
   std::ofstream(stack.dir() / "plant.json")
       << R"({"source": "sim", "target": ")" << scenarios << R"(noisy-bearing.json", "batch_samples": 500, "speed": )"

@@ -54,6 +54,11 @@ struct Amb1dofRecordOptions {
   int substeps = 16;                              // RK4 steps per sample
   double sample_time = 1e-4;
   std::uint64_t seed = 1;
+  // A fault in the middle of the record: from `step_time` s after the settling on, the true
+  // plant has these overrides too (e.g. R1 +20 %); the state goes on, the loop re-settles by
+  // itself as on a real bearing. Empty: no step.
+  std::map<std::string, double> step_parameters;
+  double step_time = 0.0;
 };
 
 struct Amb1dofRecord {
@@ -61,6 +66,11 @@ struct Amb1dofRecord {
   Eigen::Index settled = 0;                // the first sample after the settling
   sim::Amb1dofParameters true_parameters;  // with i0 = i_eq
   std::map<std::string, double> truth;     // v1..v9 of true_parameters
+  // With step_parameters: the first sample after the step and the truth from there on (the
+  // plant with the step's overrides linearised where its loop settles); else stepped = 0.
+  Eigen::Index stepped = 0;
+  sim::Amb1dofParameters true_parameters_after_step;
+  std::map<std::string, double> truth_after_step;
 };
 
 // The "observer" controller's design weights, other than amb1dof_observer_controller_options:
@@ -69,7 +79,8 @@ struct Amb1dofRecord {
 // poles within radius 0.9.
 sim::ObserverControllerOptions other_observer_options();
 
-// Throws Error for an unknown controller (naming the known ones) and what the simulator throws.
+// Throws Error for an unknown controller (naming the known ones), a step outside the record
+// after the settling, and what the simulator throws.
 Amb1dofRecord simulate_amb1dof_record(const Amb1dofRecordOptions& options);
 
 }  // namespace ambid::test_support
