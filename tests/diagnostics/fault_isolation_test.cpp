@@ -12,7 +12,7 @@
 #include "diagnostics/identified_estimates.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace fault_isolation_test {
 
 constexpr double kSigma = 0.003;  // relative one-sigma of every deviation
 
@@ -169,5 +169,5 @@ TEST(FaultIsolation, RefusesBadInput) {
   EXPECT_THROW(isolate({moved("R1", 0.1)}, bad), Error);
 }
 
-}  // namespace
+}  // namespace fault_isolation_test
 }  // namespace ambid::diag

@@ -19,7 +19,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_audit_sweep_slow_test {
 
 struct SweepCase {
   std::string effect;  // the catalogue's name, or "none"
@@ -136,5 +136,5 @@ INSTANTIATE_TEST_SUITE_P(
                       TodayCase{{"none", 0, 3.25e-3, 11}, "none", "", 0.0}),
     today_name);
 
-}  // namespace
+}  // namespace maglev_audit_sweep_slow_test
 }  // namespace ambid::diag
