@@ -35,7 +35,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace soak_slow_test {
 
 using Clock = std::chrono::steady_clock;
 
@@ -230,5 +230,5 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   std::cout << "  plant time " << r1.back().time << " s, " << r1.size() << " R1 windows, " << holes << " holes\n";
 }
 
-}  // namespace
+}  // namespace soak_slow_test
 }  // namespace ambid::testing
