@@ -8,7 +8,7 @@
 #include <limits>
 
 namespace ambid::daemons {
-namespace {
+namespace sample_gaps_test {
 
 constexpr double kT = 1e-4;
 constexpr std::uint32_t kCount = 500;  // 0.05 s per batch
@@ -76,5 +76,5 @@ TEST(SampleGaps, MalformedBatchesAreIgnored) {
   EXPECT_FALSE(gaps.check(batch(1, 0.05)));  // the state is where the last good batch left it
 }
 
-}  // namespace
+}  // namespace sample_gaps_test
 }  // namespace ambid::daemons

@@ -14,7 +14,7 @@
 #include "diagnostics/identified_estimates.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace window_failures_test {
 
 using Change = WindowFailures::Change;
 using ::testing::HasSubstr;
@@ -159,5 +159,5 @@ TEST(WindowFailures, APlantWithoutEstimatesYetGetsItsParametersMarkedStale) {
   for (const diag::Alert& a : engine.process(nominal_window(0.25))) EXPECT_EQ(a.level, diag::Level::ok);
 }
 
-}  // namespace
+}  // namespace window_failures_test
 }  // namespace ambid::daemons
