@@ -16,7 +16,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::test_support {
-namespace {
+namespace amb1dof_records {
 
 Eigen::MatrixXd diagonal(std::initializer_list<double> values) {
   Eigen::VectorXd d(Eigen::Index(values.size()));
@@ -70,7 +70,8 @@ sim::Scenario scenario_of(const Amb1dofRecordOptions& o, bool excited) {
   return scenario;
 }
 
-}  // namespace
+}  // namespace amb1dof_records
+using namespace amb1dof_records;
 
 sim::ObserverControllerOptions other_observer_options() {
   sim::ObserverControllerOptions o;
