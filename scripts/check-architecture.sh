@@ -3,7 +3,10 @@
 #  1. a library's public headers are the .hpp files at its root; headers in its subfolders are
 #     internal and may be included only by the library itself, its tests (tests/LIB/) and bench/;
 #  2. arrows point one way: core <- plant_sim, identifier <- diagnostics <- services;
-#  3. no DDS header outside services/.
+#  3. no DDS header outside services/;
+#  4. the test programs' files are safe in a unity batch (tests/CMakeLists.txt): no anonymous
+#     namespace, file-local names in a namespace named after the file (every *_test.cpp opens
+#     one; none opens another file's), and every #define is #undef'd in the same file.
 # Prints every violation as file:line and exits 1 when there is one. Run by ctest (architecture).
 set -euo pipefail
 cd "${1:-$(dirname "$0")/..}"
@@ -41,5 +44,25 @@ while IFS= read -r hit; do
   fail "DDS header outside services/: $hit"
 done < <(sources core plant_sim identifier diagnostics | xargs grep -nE '#include [<"](fastdds|fastrtps|fastcdr|dds/|idl/)' || true)
 
-[ $status -eq 0 ] && echo "architecture: include rules hold"
+# 4. Unity-safe test files: a batch compiles several .cpp files as one translation unit.
+test_sources=$(find tests -name '*.cpp' | sort)
+stems=$(echo "$test_sources" | xargs -n1 basename | sed 's/\.cpp$//')
+for file in $test_sources; do
+  stem=$(basename "$file" .cpp)
+  while IFS= read -r hit; do
+    fail "anonymous namespace in a test file (unity batches): $file:$hit: use namespace $stem"
+  done < <(grep -nE '^namespace \{' "$file" || true)
+  case $file in
+    *_test.cpp) grep -qE "^namespace $stem \{" "$file" || fail "$file: no namespace $stem for its file-local names" ;;
+  esac
+  while IFS=: read -r line name; do
+    [ "$name" = "$stem" ] || ! grep -qx "$name" <<<"$stems" ||
+      fail "$file:$line: namespace $name is another file's (copied?): use namespace $stem"
+  done < <(grep -noE '^namespace [a-z0-9_]+ \{' "$file" | sed -E 's/namespace ([a-z0-9_]+) \{/\1/' || true)
+  while IFS=: read -r line macro; do
+    grep -qE "^#undef $macro\b" "$file" || fail "$file:$line: #define $macro without #undef (it would leak into the next file of a unity batch)"
+  done < <(grep -noE '^#define [A-Za-z0-9_]+' "$file" | sed -E 's/#define //' || true)
+done
+
+[ $status -eq 0 ] && echo "architecture: include rules and unity-safe test files hold"
 exit $status

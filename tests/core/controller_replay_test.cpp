@@ -13,7 +13,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace controller_replay_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -104,5 +104,5 @@ TEST(ControllerReplay, LimitsTravelThroughTheSidecarAndBadOnesAreRefused) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace controller_replay_test
 }  // namespace ambid

@@ -16,7 +16,7 @@
 #include "mat_writer.hpp"
 
 namespace ambid {
-namespace {
+namespace experiment_import_test {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
@@ -351,5 +351,5 @@ TEST_F(ImportExperiment, VendoredMaglevRecordsAreRefusedUnresampledAndImportedRe
   EXPECT_EQ(import_experiment(proposed, pm, o).rows, 1638);
 }
 
-}  // namespace
+}  // namespace experiment_import_test
 }  // namespace ambid

@@ -20,7 +20,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace experiment_memory_test {
 
 namespace fs = std::filesystem;
 
@@ -158,5 +158,5 @@ TEST_F(ExperimentMemory, GarbageLinesDoNotSizeTheArrays) {
   }
 }
 
-}  // namespace
+}  // namespace experiment_memory_test
 }  // namespace ambid

@@ -13,7 +13,7 @@
 #include "core/json_text.hpp"
 
 namespace ambid {
-namespace {
+namespace experiment_read_test {
 
 using nlohmann::json;
 using ::testing::AllOf;
@@ -610,5 +610,5 @@ TEST_F(ReadExperiment, RefusesADirectoryNamingIt) {
   EXPECT_THAT(refusal(), HasSubstr("cannot read " + (dir_ / "run.json").string() + ": Is a directory"));
 }
 
-}  // namespace
+}  // namespace experiment_read_test
 }  // namespace ambid

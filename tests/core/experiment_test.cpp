@@ -13,7 +13,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace experiment_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -320,5 +320,5 @@ TEST_F(ExperimentFiles, WriterReportsAnUnwritableTarget) {
   EXPECT_FALSE(fs::exists(dir_ / "run.json"));
 }
 
-}  // namespace
+}  // namespace experiment_test
 }  // namespace ambid

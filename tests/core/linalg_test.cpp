@@ -10,7 +10,7 @@
 #include "core/linalg.hpp"
 
 namespace ambid {
-namespace {
+namespace linalg_test {
 
 TEST(Linalg, EigenvaluesOfCompanionMatrixAreThePolynomialRoots) {
   // x^3 - 6 x^2 + 11 x - 6 = (x - 1)(x - 2)(x - 3)
@@ -183,5 +183,5 @@ TEST(Linalg, NonSquareInputThrowsWithItsDimensions) {
       Error);
 }
 
-}  // namespace
+}  // namespace linalg_test
 }  // namespace ambid

@@ -13,7 +13,7 @@
 #include "core/model_file.hpp"
 
 namespace ambid {
-namespace {
+namespace model_file_test {
 
 using nlohmann::json;
 using ::testing::AllOf;
@@ -237,5 +237,5 @@ TEST_F(ModelFile, MissingFileIsNamed) {
   }
 }
 
-}  // namespace
+}  // namespace model_file_test
 }  // namespace ambid

@@ -5,7 +5,7 @@
 #include "core/state_space.hpp"
 
 namespace ambid {
-namespace {
+namespace state_space_test {
 
 TEST(StateSpace, FirstOrderZohMatchesAnalytic) {
   // x' = -a x + b u  ->  Ad = exp(-aT), Bd = b/a (1 - exp(-aT))
@@ -75,5 +75,5 @@ TEST(StateSpace, SimulateImpulseGivesMarkovParameters) {
   }
 }
 
-}  // namespace
+}  // namespace state_space_test
 }  // namespace ambid

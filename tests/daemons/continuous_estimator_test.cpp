@@ -14,7 +14,7 @@ namespace ambid::daemons {
 using convert::sample_batch;
 using convert::SampleWindow;
 
-namespace {
+namespace continuous_estimator_test {
 
 const bus::Estimate& physical(const bus::IdentifiedModel& m, const std::string& name) {
   for (const auto& e : m.physical)
@@ -74,5 +74,5 @@ TEST(ContinuousEstimator, RefusesAWindowOfAnotherPlant) {
   EXPECT_THROW(estimator.identify(w, "p", 0), Error);
 }
 
-}  // namespace
+}  // namespace continuous_estimator_test
 }  // namespace ambid::daemons

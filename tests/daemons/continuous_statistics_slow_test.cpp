@@ -27,7 +27,7 @@
 #include "support/amb1dof_records.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace continuous_statistics_slow_test {
 
 constexpr double kSkip = 4.0;                                        // s: the start from the nominal model
 const std::vector<std::string> kChecked = {"v5", "v7", "v8", "v9"};  // R1, R2, kw1, kw2
@@ -123,5 +123,5 @@ INSTANTIATE_TEST_SUITE_P(Controllers, ContinuousStatistics,
                          ::testing::ValuesIn(test_support::amb1dof_record_controllers()),
                          [](const auto& param_info) { return param_info.param; });
 
-}  // namespace
+}  // namespace continuous_statistics_slow_test
 }  // namespace ambid::daemons

@@ -29,7 +29,7 @@
 #include "support/amb1dof_records.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace continuous_step_fault_test {
 
 constexpr double kWindow = 0.5;      // s, deploy/config/identifier.json
 constexpr double kTolerance = 0.05;  // of the truth
@@ -137,5 +137,5 @@ TEST_P(ContinuousStepFault, R1FollowsTheStacksSwapToAHotCoil) {
 INSTANTIATE_TEST_SUITE_P(Controllers, ContinuousStepFault, ::testing::Values("lqr", "pid"),
                          [](const auto& param_info) { return param_info.param; });
 
-}  // namespace
+}  // namespace continuous_step_fault_test
 }  // namespace ambid::daemons

@@ -12,7 +12,7 @@ namespace ambid::daemons {
 using convert::sample_batch;
 using convert::SampleWindow;
 
-namespace {
+namespace identify_window_test {
 
 double physical(const bus::IdentifiedModel& m, const std::string& name) {
   for (const auto& e : m.physical)
@@ -108,11 +108,11 @@ TEST(SampleWindow, RejectsMalformedAndRestartsOnGaps) {
   EXPECT_EQ(window.buffered(), 100);
 }
 
-}  // namespace
+}  // namespace identify_window_test
 }  // namespace ambid::daemons
 
 namespace ambid::daemons {
-namespace {
+namespace identify_window_test {
 
 TEST(SampleWindow, DropsTheSettlingSamplesOfEveryRecord) {
   sim::ScenarioOptions o;
@@ -130,5 +130,5 @@ TEST(SampleWindow, DropsTheSettlingSamplesOfEveryRecord) {
   EXPECT_DOUBLE_EQ(w.t(0), record.t(150) + 1.0);
 }
 
-}  // namespace
+}  // namespace identify_window_test
 }  // namespace ambid::daemons

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace ambid::daemons {
-namespace {
+namespace model_gaps_test {
 
 TEST(ModelGaps, CountsTheModelsNeverReceived) {
   ModelGaps gaps;
@@ -22,5 +22,5 @@ TEST(ModelGaps, CountsTheModelsNeverReceived) {
   EXPECT_EQ(gaps.missed(3), 1u);
 }
 
-}  // namespace
+}  // namespace model_gaps_test
 }  // namespace ambid::daemons

@@ -15,7 +15,7 @@
 #include "services/daemons/identify_window.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace plant_description_test {
 
 using convert::describe;
 using Event = DescribedWindows::Event;
@@ -166,5 +166,5 @@ TEST(DescriptionChange, ControllerKeepsTheBearingParametersMakeAnother) {
   EXPECT_EQ(bearing_difference(pid, hot), "R1 17.5 -> 21");
 }
 
-}  // namespace
+}  // namespace plant_description_test
 }  // namespace ambid::daemons

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 namespace ambid::daemons {
-namespace {
+namespace plant_time_test {
 
 TEST(PlantTime, SkipsReplaysAndContinuesAfterARestart) {
   PlantTime clock;
@@ -27,5 +27,5 @@ TEST(PlantTime, SkipsReplaysAndContinuesAfterARestart) {
   EXPECT_DOUBLE_EQ(*clock.last(), 120.5);
 }
 
-}  // namespace
+}  // namespace plant_time_test
 }  // namespace ambid::daemons

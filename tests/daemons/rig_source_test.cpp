@@ -15,7 +15,7 @@
 #include "services/rig/udp_endpoint.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace rig_source_test {
 
 using ::testing::HasSubstr;
 using namespace std::chrono_literals;
@@ -267,5 +267,5 @@ TEST(RigSource, NoBoardNoSource) {
   }
 }
 
-}  // namespace
+}  // namespace rig_source_test
 }  // namespace ambid::daemons

@@ -8,7 +8,7 @@
 #include <limits>
 
 namespace ambid::daemons {
-namespace {
+namespace sample_gaps_test {
 
 constexpr double kT = 1e-4;
 constexpr std::uint32_t kCount = 500;  // 0.05 s per batch
@@ -76,6 +76,7 @@ TEST(SampleGaps, MalformedBatchesAreIgnored) {
   EXPECT_FALSE(gaps.check(batch(1, 0.05)));  // the state is where the last good batch left it
 }
 
+<<<<<<< HEAD
 // A restarted plant (its clock back near 0) whose first batches this consumer missed: the gap
 // is those batches on the new clock (measured in the soak before: "missed 0 samples (plant
 // time 86.25 to 29.8 s, 71 batches)", a negative length).
@@ -92,4 +93,7 @@ TEST(SampleGaps, BatchesMissedAfterAPlantRestartAreAGapOnTheNewClock) {
 }
 
 }  // namespace
+=======
+}  // namespace sample_gaps_test
+>>>>>>> test-unity
 }  // namespace ambid::daemons

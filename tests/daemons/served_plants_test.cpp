@@ -9,7 +9,7 @@
 #include "services/daemons/served_plants.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace served_plants_test {
 
 using ::testing::HasSubstr;
 using ::testing::ThrowsMessage;
@@ -81,5 +81,5 @@ TEST(ForeignModels, RemembersOnlyTheNewestOwnModels) {
   EXPECT_FALSE(f.foreign(model("a", 2, 2.0)));
 }
 
-}  // namespace
+}  // namespace served_plants_test
 }  // namespace ambid::daemons

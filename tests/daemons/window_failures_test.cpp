@@ -15,7 +15,7 @@
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::daemons {
-namespace {
+namespace window_failures_test {
 
 using Change = WindowFailures::Change;
 using ::testing::HasSubstr;
@@ -160,5 +160,5 @@ TEST(WindowFailures, APlantWithoutEstimatesYetGetsItsParametersMarkedStale) {
   for (const diag::Alert& a : engine.process(nominal_window(0.25))) EXPECT_EQ(a.level, diag::Level::ok);
 }
 
-}  // namespace
+}  // namespace window_failures_test
 }  // namespace ambid::daemons

@@ -6,7 +6,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace bounds_test {
 
 class Bounds : public testing::TestWithParam<VendorPair> {};
 
@@ -50,5 +50,5 @@ INSTANTIATE_TEST_SUITE_P(Dds, Bounds,
                          testing::Values(VendorPair{"fastdds", "cyclone"}, VendorPair{"cyclone", "fastdds"}),
                          pair_name);
 
-}  // namespace
+}  // namespace bounds_test
 }  // namespace ambid::bus::test

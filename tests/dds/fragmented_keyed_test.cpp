@@ -18,7 +18,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace fragmented_keyed_test {
 
 constexpr int kPlants = 4;
 constexpr int kRounds = 40;
@@ -78,5 +78,5 @@ TEST(FragmentedKeyed, LargeModelsFromCycloneReachAFastReaderUnderTheirOwnKeys) {
   EXPECT_GE(taken, kPlants * 8) << "fewer models than one history depth per plant";
 }
 
-}  // namespace
+}  // namespace fragmented_keyed_test
 }  // namespace ambid::bus::test

@@ -14,7 +14,7 @@ bool eventually(const std::function<bool()>& done, std::chrono::milliseconds lim
   return true;
 }
 
-namespace {
+namespace harness_support {
 
 template <class... Messages>
 void write_each(AllWriters& writers, std::tuple<Messages...>*) {
@@ -44,7 +44,8 @@ void expect_each(AllReaders& readers, std::tuple<Messages...>*) {
       ...);
 }
 
-}  // namespace
+}  // namespace harness_support
+using namespace harness_support;
 
 void write_all(AllWriters& writers) { write_each(writers, static_cast<AllMessages*>(nullptr)); }
 

@@ -7,7 +7,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace late_joiner_test {
 
 // small(1..n) on one instance and largest() on another; what a late joiner must get is the last
 // `depth` small ones and largest().
@@ -68,5 +68,5 @@ TEST_P(LateJoiner, GetsNoOldCommands) {
 
 INSTANTIATE_TEST_SUITE_P(Dds, LateJoiner, testing::ValuesIn(vendor_pairs), pair_name);
 
-}  // namespace
+}  // namespace late_joiner_test
 }  // namespace ambid::bus::test

@@ -10,7 +10,7 @@
 #include "dds/peer.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace liveliness_test {
 
 // The peer: "VENDOR DOMAIN" -> write PlantSamples and Health every 200 ms, as a daemon would,
 // until killed. (Writing once right after the writers matched could race the readers' side of
@@ -65,5 +65,5 @@ TEST_P(Liveliness, KilledWriterIsReportedLost) {
 
 INSTANTIATE_TEST_SUITE_P(Dds, Liveliness, testing::ValuesIn(vendor_pairs), pair_name);
 
-}  // namespace
+}  // namespace liveliness_test
 }  // namespace ambid::bus::test

@@ -13,7 +13,7 @@
 #include "dds/packet_capture.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace loopback_only_test {
 
 void exchange_both_ways(Bus& fast, Bus& cyclone) {
   for (auto [from, to] : {std::pair{&fast, &cyclone}, std::pair{&cyclone, &fast}}) {
@@ -51,5 +51,5 @@ TEST(LoopbackOnly, ProfileFilesSendNothingElsewhere) {
   expect_nothing_left_loopback(161, dir + "fastdds-loopback.xml", dir + "cyclone-loopback.xml");
 }
 
-}  // namespace
+}  // namespace loopback_only_test
 }  // namespace ambid::bus::test

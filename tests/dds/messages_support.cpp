@@ -4,7 +4,7 @@
 #include <vector>
 
 namespace ambid::bus::test {
-namespace {
+namespace messages_support {
 
 std::vector<double> ramp(std::size_t n, double start) {
   std::vector<double> v(n);
@@ -34,7 +34,8 @@ Matrix square(std::size_t n, double start) {
   return {static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n), ramp(n * n, start)};
 }
 
-}  // namespace
+}  // namespace messages_support
+using namespace messages_support;
 
 std::string text_of_length(std::size_t n, char first) {
   // Printable ASCII '!'..'~', cycling.

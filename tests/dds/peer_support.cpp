@@ -15,12 +15,13 @@
 extern char** environ;
 
 namespace ambid::bus::test {
-namespace {
+namespace peer_support {
 
 constexpr int ready_fd_in_peer = 3;
 constexpr const char* spec_variable = "AMBID_DDS_PEER";
 
-}  // namespace
+}  // namespace peer_support
+using namespace peer_support;
 
 PeerProcess::PeerProcess(const std::string& test_name, const std::string& spec) {
   int fds[2];

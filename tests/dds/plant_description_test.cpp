@@ -9,7 +9,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace plant_description_test {
 
 class DescriptionTopic : public testing::TestWithParam<VendorPair> {};
 
@@ -62,5 +62,5 @@ INSTANTIATE_TEST_SUITE_P(Dds, DescriptionTopic,
                          testing::Values(VendorPair{"fastdds", "cyclone"}, VendorPair{"cyclone", "fastdds"}),
                          pair_name);
 
-}  // namespace
+}  // namespace plant_description_test
 }  // namespace ambid::bus::test

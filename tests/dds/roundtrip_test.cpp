@@ -6,7 +6,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace roundtrip_test {
 
 void expect_round_trip(Bus& from, Bus& to) {
   AllReaders readers(to);
@@ -48,5 +48,5 @@ TEST(RoundTripProfileFiles, FileProfileMeetsBuiltInProfile) {
   expect_round_trip(*file, *builtin);
 }
 
-}  // namespace
+}  // namespace roundtrip_test
 }  // namespace ambid::bus::test

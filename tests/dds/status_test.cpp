@@ -5,7 +5,7 @@
 #include "dds/harness.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace status_test {
 
 class Status : public testing::TestWithParam<VendorPair> {};
 
@@ -57,5 +57,5 @@ TEST_P(Status, WaitWakesOnDataAndTimesOutWithout) {
 
 INSTANTIATE_TEST_SUITE_P(Dds, Status, testing::ValuesIn(vendor_pairs), pair_name);
 
-}  // namespace
+}  // namespace status_test
 }  // namespace ambid::bus::test

@@ -8,7 +8,7 @@
 #include "dds/peer.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace two_process_test {
 
 // The peer: "VENDOR DOMAIN" -> read every topic, expect round_trip_messages() of each.
 TEST(TwoProcessPeer, ReadsEveryTopic) {
@@ -41,5 +41,5 @@ TEST_P(TwoProcess, EveryTopicArrivesIntact) {
 
 INSTANTIATE_TEST_SUITE_P(Dds, TwoProcess, testing::ValuesIn(vendor_pairs), pair_name);
 
-}  // namespace
+}  // namespace two_process_test
 }  // namespace ambid::bus::test

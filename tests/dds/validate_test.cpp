@@ -7,7 +7,7 @@
 #include "services/bus/validate.hpp"
 
 namespace ambid::bus::test {
-namespace {
+namespace validate_test {
 
 using testing::HasSubstr;
 
@@ -123,5 +123,5 @@ TEST(QosTable, NamesAndSettings) {
   EXPECT_GT(qos(Profile::health).liveliness.count(), 0);
 }
 
-}  // namespace
+}  // namespace validate_test
 }  // namespace ambid::bus::test

@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace alert_test {
 
 Alert example() {
   Alert a;
@@ -81,5 +81,5 @@ TEST(Alert, RefusesWhatTheContractDoesNot) {
   EXPECT_EQ(alert_from_json(j), example());  // unknown keys are ignored
 }
 
-}  // namespace
+}  // namespace alert_test
 }  // namespace ambid::diag

@@ -11,7 +11,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_acceptance_slow_test {
 
 TEST(AuditAcceptanceSweep, CleanRecordsOfThreeControllers) {
   int records = 0, catalogue = 0, unexplained = 0;
@@ -31,5 +31,5 @@ TEST(AuditAcceptanceSweep, CleanRecordsOfThreeControllers) {
   EXPECT_LE(unexplained, 4);
 }
 
-}  // namespace
+}  // namespace audit_acceptance_slow_test
 }  // namespace ambid::diag

@@ -15,7 +15,7 @@
 #include "plant_sim/amb1dof_parameters.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_acceptance_test {
 
 void print(const std::string& what, const AuditResult& r) {
   std::cerr << what << ": cause " << r.cause << ", nominal residual p " << r.nominal_check.p_value << " (coherence "
@@ -158,5 +158,5 @@ TEST(AuditAcceptance, CleanIndependentRecordsHaveNoCause) {
   EXPECT_EQ(++records, 10);
 }
 
-}  // namespace
+}  // namespace audit_acceptance_test
 }  // namespace ambid::diag

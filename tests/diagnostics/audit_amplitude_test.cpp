@@ -17,7 +17,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_amplitude_test {
 
 // 1.2 s, PRBS at `levels` (V) in successive equal parts, sensor noise as the hidden-effect tests.
 Experiment stepped_record(const sim::Effect& effect, std::vector<double> levels, std::uint64_t seed) {
@@ -126,5 +126,5 @@ TEST(AuditAmplitude, ShortRecordsAreNotDeterminable) {
   EXPECT_NE(b.reason.find("shorter than three Welch windows"), std::string::npos) << b.reason;
 }
 
-}  // namespace
+}  // namespace audit_amplitude_test
 }  // namespace ambid::diag

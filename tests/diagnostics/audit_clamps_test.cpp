@@ -18,7 +18,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_clamps_test {
 
 constexpr Eigen::Index kMarked = 24;
 
@@ -90,5 +90,5 @@ TEST(AuditClamps, ClampedSamplesCountInNoStatistic) {
   EXPECT_GT(c.baseline_total, 2.0 * a.baseline_total);
 }
 
-}  // namespace
+}  // namespace audit_clamps_test
 }  // namespace ambid::diag

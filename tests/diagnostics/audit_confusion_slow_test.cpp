@@ -22,7 +22,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_confusion_slow_test {
 
 struct Row {
   int runs = 0, right = 0;
@@ -135,5 +135,5 @@ TEST(AuditIndependentSlow, ConfusionTable) {
   EXPECT_EQ(false_causes, 0);
 }
 
-}  // namespace
+}  // namespace audit_confusion_slow_test
 }  // namespace ambid::diag

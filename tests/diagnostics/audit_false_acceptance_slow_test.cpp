@@ -12,7 +12,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_false_acceptance_slow_test {
 
 TEST(AuditFalseAcceptance, CleanRecordsRarelyGetACause) {
   constexpr int kSeeds = 20;
@@ -42,5 +42,5 @@ TEST(AuditFalseAcceptance, CleanRecordsRarelyGetACause) {
   EXPECT_NEAR(sd, 1.0, 0.3);
 }
 
-}  // namespace
+}  // namespace audit_false_acceptance_slow_test
 }  // namespace ambid::diag

@@ -9,7 +9,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_hidden_effect_slow_test {
 
 constexpr int kDraws = 3;
 
@@ -42,5 +42,5 @@ TEST(HiddenEffectSweep, CleanDataHasNoCause) {
   }
 }
 
-}  // namespace
+}  // namespace audit_hidden_effect_slow_test
 }  // namespace ambid::diag

@@ -11,7 +11,7 @@
 #include "diagnostics/audit.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_hidden_effect_test {
 
 class HiddenEffect : public ::testing::TestWithParam<std::string> {};
 
@@ -44,5 +44,5 @@ TEST(HiddenEffect, CleanDataHasNoCause) {
   EXPECT_GT(r.findings.front().nrmse_total_after, 0.9 * r.baseline_total);
 }
 
-}  // namespace
+}  // namespace audit_hidden_effect_test
 }  // namespace ambid::diag

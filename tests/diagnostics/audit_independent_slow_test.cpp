@@ -21,7 +21,7 @@
 #include "services/report/svg.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_independent_slow_test {
 
 // The smallest k with P(X > k) < tail for X ~ Binomial(n, p).
 int binomial_bound(int n, double p, double tail) {
@@ -149,5 +149,5 @@ TEST(AuditIndependentSlow, DetectionProbabilityAgainstEffectSize) {
   report::write_file_atomically(std::string(AMBID_BINARY_DIR) + "/audit_detection.svg", report::render_svg(figure));
 }
 
-}  // namespace
+}  // namespace audit_independent_slow_test
 }  // namespace ambid::diag

@@ -21,7 +21,7 @@ test_support::EffectRecordOptions realistic_record(const std::string& controller
   return o;
 }
 
-namespace {
+namespace audit_independent_support {
 
 // Moderate sizes in multiples of the catalogue scale: where a record of 1 s at 1.5 V shows
 // the effect above the noise (0.1 um / 1 mA fed around the loop makes the nominal NRMSE
@@ -43,7 +43,8 @@ bool excluded(const std::string& effect, const std::string& controller) {
          (effect == "eddy_current" && controller == "leadlag");
 }
 
-}  // namespace
+}  // namespace audit_independent_support
+using namespace audit_independent_support;
 
 test_support::EffectRecordOptions hidden_effect_record(const std::string& name, std::uint64_t seed,
                                                        std::uint64_t controller_index, sim::Effect& truth) {

@@ -20,7 +20,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_independent_test {
 
 class IndependentTruth : public ::testing::TestWithParam<std::string> {};
 
@@ -174,5 +174,5 @@ TEST(IndependentTruth, CleanRecordsFromEveryControllerHaveNoCause) {
   EXPECT_EQ(named, 0);
 }
 
-}  // namespace
+}  // namespace audit_independent_test
 }  // namespace ambid::diag

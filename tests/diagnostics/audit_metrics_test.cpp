@@ -16,7 +16,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_metrics_test {
 
 using ::testing::HasSubstr;
 constexpr double kPi = std::numbers::pi;
@@ -164,5 +164,5 @@ TEST(AuditInput, RefusesWhatItCannotReplay) {
   EXPECT_THAT([&] { run_audit(e, bad); }, ::testing::ThrowsMessage<Error>(HasSubstr("estimation_fraction")));
 }
 
-}  // namespace
+}  // namespace audit_metrics_test
 }  // namespace ambid::diag

@@ -12,7 +12,7 @@
 #include "diagnostics/audit/audit_residual_check.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_residual_check_replicas_test {
 
 constexpr Eigen::Index kSamples = 1500;  // the validation half of a 3000-sample rig record
 constexpr double kStep = 1e-5;           // the logger's 0.01 mm
@@ -89,5 +89,5 @@ TEST(AuditResidualCheckReplicas, AReplicaOfOtherSizeIsAnError) {
   EXPECT_THROW(residual_check(record.residual, record.excitation, 0.01, {}, {shorter}), Error);
 }
 
-}  // namespace
+}  // namespace audit_residual_check_replicas_test
 }  // namespace ambid::diag

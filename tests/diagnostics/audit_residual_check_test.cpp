@@ -11,7 +11,7 @@
 #include "diagnostics/audit/audit_residual_check.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_residual_check_test {
 
 constexpr Eigen::Index kSamples = 4000;  // a validation segment of the audit tests
 
@@ -86,5 +86,5 @@ TEST(AuditResidualCheck, ShortSegmentsAreNotDeterminableAndBadInputIsAnError) {
   EXPECT_THROW(residual_check(e, r, 1.5), Error);
 }
 
-}  // namespace
+}  // namespace audit_residual_check_test
 }  // namespace ambid::diag

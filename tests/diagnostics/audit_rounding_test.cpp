@@ -10,7 +10,7 @@
 #include "diagnostics/audit/audit_quantisation.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_rounding_test {
 
 Eigen::VectorXd uniform(Eigen::Index n, double lo, double hi, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
@@ -48,5 +48,5 @@ TEST(AuditRounding, TheDacStepIsReadFromTheCurrent) {
               ::testing::ThrowsMessage<Error>(::testing::HasSubstr("0 < smallest < largest")));
 }
 
-}  // namespace
+}  // namespace audit_rounding_test
 }  // namespace ambid::diag

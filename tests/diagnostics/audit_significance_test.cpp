@@ -11,7 +11,7 @@
 #include "diagnostics/audit/audit_significance.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace audit_significance_test {
 
 constexpr Eigen::Index kSamples = 2000;
 
@@ -80,5 +80,5 @@ TEST(AuditSignificance, ThresholdIsTheBonferroniNormalQuantile) {
   EXPECT_THROW(acceptance_threshold(0.1, 0), Error);
 }
 
-}  // namespace
+}  // namespace audit_significance_test
 }  // namespace ambid::diag

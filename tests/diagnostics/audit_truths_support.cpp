@@ -11,7 +11,7 @@
 #include "support/amb1dof_records.hpp"
 
 namespace ambid::diag::testing {
-namespace {
+namespace audit_truths_support {
 
 constexpr double kPositionNoise = 1e-7, kCurrentNoise = 1e-3, kForceNoise = 0.005, kNoiseLag = 3e-4;
 constexpr int kSubsteps = 20;
@@ -68,7 +68,8 @@ class OutOfCatalogueBearing : public sim::Plant {
   Eigen::Index n_;
 };
 
-}  // namespace
+}  // namespace audit_truths_support
+using namespace audit_truths_support;
 
 Experiment simulate_truth(const TruthOptions& o) {
   const bool beyond = o.second_mode_f > 0.0 || o.gain_variation != 0.0 || o.coloured_noise;

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace baseline_test {
 
 struct Sample {
   std::vector<double> values, sigmas;
@@ -86,5 +86,5 @@ TEST(Baseline, RefusesBadInput) {
   EXPECT_THROW(learn_baseline(nan, v), Error);
 }
 
-}  // namespace
+}  // namespace baseline_test
 }  // namespace ambid::diag

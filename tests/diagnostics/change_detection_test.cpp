@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace change_detection_test {
 
 // Windows until a two-sided CUSUM started at S = 0 alarms on N(mean, 1) data.
 double mean_cusum_run_length(double k, double h, double mean, int runs, std::uint64_t seed) {
@@ -201,5 +201,5 @@ TEST(Config, Validation) {
   EXPECT_THROW(Cusum(CusumConfig{.k = -1.0}), Error);
 }
 
-}  // namespace
+}  // namespace change_detection_test
 }  // namespace ambid::diag

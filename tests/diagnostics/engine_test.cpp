@@ -12,7 +12,7 @@
 #include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace engine_test {
 
 using testing::fresh_store_path;
 using testing::nominal;
@@ -403,5 +403,5 @@ TEST(DiagnosticsEngine, RefusedBatchLeavesNothingBehind) {
   EXPECT_EQ(store.history("bearing-A", "R1").size(), 20u);
 }
 
-}  // namespace
+}  // namespace engine_test
 }  // namespace ambid::diag

@@ -9,7 +9,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace experiment_windows_test {
 
 Experiment simulated() {
   sim::ScenarioOptions o;
@@ -73,5 +73,5 @@ TEST(SplitExperiment, BadWindowsAreRefused) {
   EXPECT_THROW(split_experiment(no_controller, 100), Error);
 }
 
-}  // namespace
+}  // namespace experiment_windows_test
 }  // namespace ambid::diag

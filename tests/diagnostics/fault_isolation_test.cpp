@@ -13,7 +13,7 @@
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace fault_isolation_test {
 
 constexpr double kSigma = 0.003;  // relative one-sigma of every deviation
 
@@ -170,5 +170,5 @@ TEST(FaultIsolation, RefusesBadInput) {
   EXPECT_THROW(isolate({moved("R1", 0.1)}, bad), Error);
 }
 
-}  // namespace
+}  // namespace fault_isolation_test
 }  // namespace ambid::diag

@@ -16,7 +16,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace fault_signatures_identification_test {
 
 std::map<std::string, double> identified(const std::map<std::string, double>& truth, std::uint64_t seed) {
   sim::ScenarioOptions o;
@@ -67,5 +67,5 @@ TEST(FaultSignaturesAgainstIdentification, SettledOperatingPointIsWhatTheIdentif
   }
 }
 
-}  // namespace
+}  // namespace fault_signatures_identification_test
 }  // namespace ambid::diag

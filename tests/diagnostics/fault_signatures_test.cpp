@@ -15,7 +15,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace fault_signatures_test {
 
 Experiment loop_header() {
   sim::ScenarioOptions o;
@@ -128,5 +128,5 @@ TEST(FaultSignatures, RefusesWhatItCannotModel) {
   EXPECT_THROW(settled_parameters(h, {}), Error);
 }
 
-}  // namespace
+}  // namespace fault_signatures_test
 }  // namespace ambid::diag

@@ -17,7 +17,7 @@ sim::MaglevParameters maglev_truth(double n_i, double n_x) {
   return p;
 }
 
-namespace {
+namespace maglev_audit_cases_support {
 
 // `p` with its mass scaled by `factor` and the force and back-EMF constants with it (the same
 // gravity balance).
@@ -28,7 +28,8 @@ sim::MaglevParameters with_mass(sim::MaglevParameters p, double factor) {
   return p;
 }
 
-}  // namespace
+}  // namespace maglev_audit_cases_support
+using namespace maglev_audit_cases_support;
 
 MaglevCase maglev_case(const std::string& effect) {
   MaglevCase c{effect, maglev_truth(1.0, 4.0), {}};

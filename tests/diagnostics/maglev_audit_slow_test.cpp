@@ -8,7 +8,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_audit_slow_test {
 
 Experiment record_at_1_3_ms(const std::string& effect) {
   const testing::MaglevCase c = testing::maglev_case(effect);
@@ -31,5 +31,5 @@ TEST(MaglevAuditSweep, ACleanRecordHasNoCause) {
   EXPECT_EQ(r.cause, "none") << (r.findings.empty() ? "" : r.findings.front().evidence);
 }
 
-}  // namespace
+}  // namespace maglev_audit_slow_test
 }  // namespace ambid::diag

@@ -21,7 +21,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_audit_sweep_slow_test {
 
 struct SweepCase {
   std::string effect;  // the catalogue's name, or "none"
@@ -122,5 +122,5 @@ INSTANTIATE_TEST_SUITE_P(Seed11, MaglevAuditTable, ::testing::ValuesIn(cases(tru
 // The open cases (kNamedToday's comment): --gtest_also_run_disabled_tests prints their rows.
 INSTANTIATE_TEST_SUITE_P(DISABLED_Seed11Open, MaglevAuditTable, ::testing::ValuesIn(cases(false)), name_of);
 
-}  // namespace
+}  // namespace maglev_audit_sweep_slow_test
 }  // namespace ambid::diag

@@ -12,7 +12,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_audit_test {
 
 // The replay (MaglevExtended, RK4 with steps of 0.2 L/R, the contract's PID and the
 // reconstructed r) against the rig loop, noise-free and logged at full precision: what is left
@@ -70,5 +70,5 @@ TEST(MaglevAudit, OtherForceLawExponentsAreNamed) {
   EXPECT_LT(r.findings.front().nrmse_total_after, 0.8 * r.baseline_total) << r.findings.front().evidence;
 }
 
-}  // namespace
+}  // namespace maglev_audit_test
 }  // namespace ambid::diag

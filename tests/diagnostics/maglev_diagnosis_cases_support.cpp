@@ -12,12 +12,13 @@
 
 namespace ambid::diag::maglev_cases {
 
-namespace {
+namespace maglev_diagnosis_cases_support {
 
 // The levels of the faulty records: with R +20 % the loop loses the body at the 16 mm level.
 const std::vector<double> kLowLevels = {0.014, 0.013, 0.015, 0.0145, 0.0155, 0.0135};
 
-}  // namespace
+}  // namespace maglev_diagnosis_cases_support
+using namespace maglev_diagnosis_cases_support;
 
 Experiment record_of(const Record& r, const Settings& s, std::uint64_t seed) {
   sim::MaglevRunOptions run = test_support::maglev_run_options(s.sample_time, s.samples, seed);
@@ -62,7 +63,7 @@ std::string alerts_text(const OfflineDiagnosis& d) {
 }
 
 // Three nominal baseline records and one nominal record after them (seeds 1-4), then two of `fault`.
-namespace {
+namespace maglev_diagnosis_cases_support {
 
 std::vector<Experiment> with_fault(const Record& fault, const Settings& s) {
   std::vector<Experiment> records;
@@ -83,7 +84,8 @@ std::optional<std::size_t> windows_to_error(const Diagnosis& d, const std::strin
   return std::nullopt;
 }
 
-}  // namespace
+}  // namespace maglev_diagnosis_cases_support
+using namespace maglev_diagnosis_cases_support;
 
 void expect_isolated(const Record& fault, const std::string& name, const std::string& expected,
                      const std::vector<std::string>& parameters, std::size_t within, const Settings& s) {

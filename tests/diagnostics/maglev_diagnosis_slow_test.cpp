@@ -11,7 +11,7 @@
 #include "diagnostics/maglev_diagnosis_cases.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_diagnosis_slow_test {
 
 using namespace maglev_cases;
 
@@ -37,5 +37,5 @@ TEST(MaglevDiagnosisSettings, OtherSampleTimesIntegratorStepsAndNoise) {
   }
 }
 
-}  // namespace
+}  // namespace maglev_diagnosis_slow_test
 }  // namespace ambid::diag

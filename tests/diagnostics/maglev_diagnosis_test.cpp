@@ -26,7 +26,7 @@
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace maglev_diagnosis_test {
 
 using namespace maglev_cases;
 
@@ -101,5 +101,5 @@ TEST(MaglevDiagnosis, SignaturesFollowTheGreyBoxStructure) {
   EXPECT_NEAR(gain.at("R"), 0.0, 0.01);
 }
 
-}  // namespace
+}  // namespace maglev_diagnosis_test
 }  // namespace ambid::diag

@@ -9,7 +9,7 @@
 #include "synthetic_estimates.hpp"
 
 namespace ambid::diag::testing {
-namespace {
+namespace noisy_diagnosis_slow_test {
 
 class NoisyDiagnosisPerController : public ::testing::TestWithParam<std::string> {};
 
@@ -30,11 +30,11 @@ TEST_P(NoisyDiagnosisPerController, EveryElementTenPercentIsAnErrorNamingItWithi
 INSTANTIATE_TEST_SUITE_P(Controllers, NoisyDiagnosisPerController,
                          ::testing::ValuesIn(test_support::amb1dof_record_controllers()));
 
-}  // namespace
+}  // namespace noisy_diagnosis_slow_test
 }  // namespace ambid::diag::testing
 
 namespace ambid::diag::testing {
-namespace {
+namespace noisy_diagnosis_slow_test {
 
 // An hour of the nominal bearing as the stack runs it (LQR loop, 1 V PRBS, 0.5 s windows,
 // deploy/config/diagnostics.json: a baseline of 20 windows, ERROR after a step persisting 20)
@@ -60,5 +60,5 @@ TEST(NoisyDiagnosis, AnHourOfNominalOperationRaisesNoAlert) {
   for (const auto& [key, level] : d.final_levels) EXPECT_EQ(level, Level::ok) << key.second;
 }
 
-}  // namespace
+}  // namespace noisy_diagnosis_slow_test
 }  // namespace ambid::diag::testing

@@ -16,7 +16,7 @@
 #include "diagnostics/monitor/change_detection.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace noisy_sigma_test {
 
 TEST(NoisyReportedSigmas, DetectorStatisticsOfNominalWindowsStayStandardNormal) {
   std::mt19937_64 rng(18);
@@ -53,5 +53,5 @@ TEST(NoisyReportedSigmas, DetectorStatisticsOfNominalWindowsStayStandardNormal) 
   EXPECT_GT(z_sd, 0.85);
 }
 
-}  // namespace
+}  // namespace noisy_sigma_test
 }  // namespace ambid::diag

@@ -19,8 +19,8 @@ NoisyWindows noisy_windows(const NoisyRecord& o, double window, double start) {
   r.amplitude = o.amplitude;
   r.duration = o.duration;
   r.settle = 0.0;
-  r.position_noise = kPositionNoise;
-  r.current_noise = kCurrentNoise;
+  r.position_noise = testing::kPositionNoise;  // qualified: a unity batch may see another file's kPositionNoise
+  r.current_noise = testing::kCurrentNoise;
   r.clock_divider = test_support::prbs_clock_divider(o.controller);
   r.seed = o.seed;
   NoisyWindows out{test_support::simulate_amb1dof_record(r), {}};

@@ -9,7 +9,7 @@
 #include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace offline_diagnosis_test {
 
 using testing::fresh_store_path;
 using testing::SyntheticPlant;
@@ -63,5 +63,5 @@ TEST(EstimateWindow, TakesTheMonitoredParametersWithTheirSigmas) {
   EXPECT_THROW(estimate_window("amb1dof_voltage", physical, sigma, 2.5, "bearing-A", Source::rig), Error);
 }
 
-}  // namespace
+}  // namespace offline_diagnosis_test
 }  // namespace ambid::diag

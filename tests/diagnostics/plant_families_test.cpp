@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace plant_families_test {
 
 std::string error_of(const std::string& model, DiagnosticsPiece piece) {
   try {
@@ -64,5 +64,5 @@ TEST(DiagnosticsFamilies, MissingPiecesAndUnknownFamiliesAreNamed) {
             "audit: unknown plant 'lamstf5' (known: amb1dof_voltage, maglev1coil_voltage, lamstf)");
 }
 
-}  // namespace
+}  // namespace plant_families_test
 }  // namespace ambid::diag

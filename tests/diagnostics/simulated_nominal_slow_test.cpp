@@ -9,7 +9,7 @@
 #include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace simulated_nominal_slow_test {
 
 TEST(SimulatedNominal, NoAlertIn1000Windows) {
   testing::SimulatedBearing bearing;
@@ -27,5 +27,5 @@ TEST(SimulatedNominal, NoAlertIn1000Windows) {
   EXPECT_EQ(store.history("bearing-A", "R1").size(), 1000u);
 }
 
-}  // namespace
+}  // namespace simulated_nominal_slow_test
 }  // namespace ambid::diag

@@ -11,7 +11,7 @@
 #include "diagnostics/simulated_windows.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace simulated_sequence_test {
 
 using testing::describe_alerts;
 using testing::raised;
@@ -59,5 +59,5 @@ TEST(SimulatedNominal, NoAlertIn150Windows) {
   for (const Alert& a : r.alerts) EXPECT_FALSE(raised(a)) << describe_alerts(r.alerts);
 }
 
-}  // namespace
+}  // namespace simulated_sequence_test
 }  // namespace ambid::diag

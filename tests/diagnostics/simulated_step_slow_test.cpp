@@ -8,7 +8,7 @@
 #include "diagnostics/simulated_step.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace simulated_step_slow_test {
 
 TEST(SimulatedStepSlow, ErrorNamesTheFaultOverSeedsSignsAndSizes) {
   for (const testing::StepCase& c : testing::step_cases())
@@ -16,5 +16,5 @@ TEST(SimulatedStepSlow, ErrorNamesTheFaultOverSeedsSignsAndSizes) {
       for (std::uint64_t seed : {5100u, 5200u, 5300u}) testing::check_step(c, relative, seed, 6);
 }
 
-}  // namespace
+}  // namespace simulated_step_slow_test
 }  // namespace ambid::diag

@@ -8,12 +8,13 @@
 #include "diagnostics/simulated_windows.hpp"
 
 namespace ambid::diag::testing {
-namespace {
+namespace simulated_step_support {
 
 constexpr std::size_t kLearning = 30;
 constexpr std::size_t kStepAt = 40;
 
-}  // namespace
+}  // namespace simulated_step_support
+using namespace simulated_step_support;
 
 void PrintTo(const StepCase& c, std::ostream* os) { *os << c.parameter; }
 

@@ -6,7 +6,7 @@
 #include "diagnostics/simulated_step.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace simulated_step_test {
 
 class SimulatedStep : public ::testing::TestWithParam<testing::StepCase> {};
 
@@ -20,5 +20,5 @@ TEST_P(SimulatedStep, ErrorNamesTheFaultWithinAFewWindows) { testing::check_step
 INSTANTIATE_TEST_SUITE_P(Faults, SimulatedStep, ::testing::ValuesIn(testing::step_cases()),
                          [](const ::testing::TestParamInfo<testing::StepCase>& p) { return p.param.parameter; });
 
-}  // namespace
+}  // namespace simulated_step_test
 }  // namespace ambid::diag

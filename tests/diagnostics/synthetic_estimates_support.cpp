@@ -46,7 +46,7 @@ std::vector<EstimateWindow> SyntheticPlant::windows(std::size_t from, std::size_
   return result;
 }
 
-namespace {
+namespace synthetic_estimates_support {
 
 void remove_store(const std::filesystem::path& path) {
   std::error_code ignored;
@@ -61,7 +61,8 @@ struct StoreCleanup {
   std::set<std::filesystem::path> paths;
 };
 
-}  // namespace
+}  // namespace synthetic_estimates_support
+using namespace synthetic_estimates_support;
 
 std::filesystem::path fresh_store_path(const std::string& name) {
   static StoreCleanup cleanup;

@@ -15,7 +15,7 @@
 #include "diagnostics/trend_store.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace trend_store_crash_test {
 
 constexpr int kWindows = 200;  // per batch: 200 windows x 7 parameters + 1 alert, one transaction
 
@@ -120,5 +120,5 @@ TEST(TrendStoreCrash, KilledWriterLosesNoCommittedBatch) {
   EXPECT_GE(batches, 18);
 }
 
-}  // namespace
+}  // namespace trend_store_crash_test
 }  // namespace ambid::diag

@@ -15,7 +15,7 @@
 #include "diagnostics/synthetic_estimates.hpp"
 
 namespace ambid::diag {
-namespace {
+namespace trend_store_test {
 
 using testing::fresh_store_path;
 
@@ -350,5 +350,5 @@ TEST(TrendStore, ConcurrentReaderSeesWholeBatches) {
   EXPECT_GE(seen.size(), 3u) << "the reader should have seen the store grow";
 }
 
-}  // namespace
+}  // namespace trend_store_test
 }  // namespace ambid::diag

@@ -4,7 +4,7 @@
 #include "fuzz/bus_messages.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace bus_messages_slow_test {
 
 constexpr int kIterations = 40000;
 
@@ -13,5 +13,5 @@ constexpr int kIterations = 40000;
 AMBID_BUS_MESSAGES(AMBID_FUZZ_TEST)
 #undef AMBID_FUZZ_TEST
 
-}  // namespace
+}  // namespace bus_messages_slow_test
 }  // namespace ambid::fuzz

@@ -32,7 +32,7 @@
 #include "services/daemons/window_failures.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace bus_messages_support {
 
 namespace fs = std::filesystem;
 using bus::Alert;
@@ -509,7 +509,8 @@ struct Target<Health> {
   }
 };
 
-}  // namespace
+}  // namespace bus_messages_support
+using namespace bus_messages_support;
 
 template <class Message>
 FuzzCount fuzz_bus_message(int iterations) {

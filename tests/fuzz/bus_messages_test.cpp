@@ -7,7 +7,7 @@
 #include "fuzz/bus_messages.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace bus_messages_test {
 
 constexpr int kIterations = 400;
 
@@ -21,5 +21,5 @@ constexpr int kIterations = 400;
 AMBID_BUS_MESSAGES(AMBID_FUZZ_TEST)
 #undef AMBID_FUZZ_TEST
 
-}  // namespace
+}  // namespace bus_messages_test
 }  // namespace ambid::fuzz

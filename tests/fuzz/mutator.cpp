@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace mutator {
 
 // Bytes and tokens that change what a JSON, CSV or frame parser does.
 constexpr std::string_view kBytes = "{}[]\",:\n\r\t\\0-+.eE9 \x00\xff\x80\xc3";
@@ -34,7 +34,8 @@ std::string printable(const std::string& input) {
   return out;
 }
 
-}  // namespace
+}  // namespace mutator
+using namespace mutator;
 
 std::size_t Mutator::position(std::size_t size) {
   return size == 0 ? 0 : std::uniform_int_distribution<std::size_t>(0, size - 1)(random_);

@@ -4,7 +4,7 @@
 #include "fuzz/readers.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace readers_slow_test {
 
 constexpr int kIterations = 40000;
 
@@ -14,5 +14,5 @@ TEST(FuzzLong, ModelJson) { EXPECT_GT(fuzz_model_json(kIterations).refused, 0); 
 TEST(FuzzLong, ScenarioJson) { EXPECT_GT(fuzz_scenario_json(kIterations).refused, 0); }
 TEST(FuzzLong, RigFrame) { EXPECT_GT(fuzz_rig_frame(kIterations).refused, 0); }
 
-}  // namespace
+}  // namespace readers_slow_test
 }  // namespace ambid::fuzz

@@ -14,7 +14,7 @@
 #include "services/rig/rig_frame.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace readers_support {
 
 namespace fs = std::filesystem;
 
@@ -98,11 +98,12 @@ std::vector<std::string> frame_corpus() {
   return corpus;
 }
 
-}  // namespace
+}  // namespace readers_support
+using namespace readers_support;
 
 FuzzCount fuzz_experiment_csv(int iterations) {
   const ExperimentTexts& texts = experiment_texts();
-  const fs::path stem = scratch().file("csv");
+  const fs::path stem = readers_support::scratch().file("csv");
   write(stem.string() + ".json", texts.sidecar);
   return fuzz({texts.csv}, iterations, 11, [&](const std::string& csv) {
     write(stem.string() + ".csv", csv);
@@ -112,7 +113,7 @@ FuzzCount fuzz_experiment_csv(int iterations) {
 
 FuzzCount fuzz_experiment_sidecar(int iterations) {
   const ExperimentTexts& texts = experiment_texts();
-  const fs::path stem = scratch().file("sidecar");
+  const fs::path stem = readers_support::scratch().file("sidecar");
   write(stem.string() + ".csv", texts.csv);
   return fuzz({texts.sidecar}, iterations, 12, [&](const std::string& sidecar) {
     write(stem.string() + ".json", sidecar);
@@ -121,7 +122,7 @@ FuzzCount fuzz_experiment_sidecar(int iterations) {
 }
 
 FuzzCount fuzz_model_json(int iterations) {
-  const fs::path path = scratch().file("model.json");
+  const fs::path path = readers_support::scratch().file("model.json");
   return fuzz({model_text()}, iterations, 13, [&](const std::string& text) {
     write(path, text);
     read_model(path);
@@ -133,7 +134,7 @@ FuzzCount fuzz_scenario_json(int iterations) {
   for (const auto& entry : fs::directory_iterator(fs::path(AMBID_SOURCE_DIR) / "tests/integration/scenarios"))
     if (entry.path().extension() == ".json") corpus.push_back(read_text_file(entry.path()));
   std::sort(corpus.begin(), corpus.end());  // the directory's order is the file system's
-  const fs::path path = scratch().file("scenario.json");
+  const fs::path path = readers_support::scratch().file("scenario.json");
   return fuzz(corpus, iterations, 15, [&](const std::string& text) {
     write(path, text);
     daemons::read_scenario_file(path.string());

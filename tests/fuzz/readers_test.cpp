@@ -5,7 +5,7 @@
 #include "fuzz/readers.hpp"
 
 namespace ambid::fuzz {
-namespace {
+namespace readers_test {
 
 constexpr int kIterations = 400;
 
@@ -20,5 +20,5 @@ TEST(Fuzz, ModelJson) { expect_both_outcomes(fuzz_model_json(kIterations)); }
 TEST(Fuzz, ScenarioJson) { expect_both_outcomes(fuzz_scenario_json(kIterations)); }
 TEST(Fuzz, RigFrame) { expect_both_outcomes(fuzz_rig_frame(kIterations)); }
 
-}  // namespace
+}  // namespace readers_test
 }  // namespace ambid::fuzz

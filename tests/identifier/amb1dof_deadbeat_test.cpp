@@ -18,7 +18,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace amb1dof_deadbeat_test {
 
 constexpr double kT = 1e-4;
 
@@ -255,5 +255,5 @@ TEST(Amb1dofDeadbeat, WrongControllerOrExperimentIsRefused) {
   }
 }
 
-}  // namespace
+}  // namespace amb1dof_deadbeat_test
 }  // namespace ambid::ident

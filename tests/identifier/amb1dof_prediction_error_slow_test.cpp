@@ -6,7 +6,7 @@
 #include "amb1dof_pem_checks.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace amb1dof_prediction_error_slow_test {
 
 class WindowScatter : public ::testing::TestWithParam<std::string> {};
 
@@ -14,5 +14,5 @@ TEST_P(WindowScatter, TwentyWindowsScatterAsTheReportedSigma) { testing::check_w
 
 INSTANTIATE_TEST_SUITE_P(Controllers, WindowScatter, ::testing::ValuesIn(testing::amb1dof_record_controllers()));
 
-}  // namespace
+}  // namespace amb1dof_prediction_error_slow_test
 }  // namespace ambid::ident

@@ -26,7 +26,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace amb1dof_prediction_error_test {
 
 using testing::Amb1dofRecord;
 using testing::Amb1dofRecordOptions;
@@ -248,5 +248,5 @@ TEST(Amb1dofPredictionError, TooShortRecordAndBadInputsAreRefused) {
   EXPECT_THROW(fit_amb1dof_prediction_error_from(d.y, d.u, d.r, 1e-4, bad), Error);
 }
 
-}  // namespace
+}  // namespace amb1dof_prediction_error_test
 }  // namespace ambid::ident

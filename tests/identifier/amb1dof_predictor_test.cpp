@@ -10,7 +10,7 @@
 #include "support/amb1dof_records.hpp"
 
 namespace ambid::ident::pem {
-namespace {
+namespace amb1dof_predictor_test {
 
 constexpr double kSampleTime = 1e-4;
 // Relative step of the central differences: their truncation error is ~1e-6 relative, their
@@ -108,5 +108,5 @@ TEST(Amb1dofPredictor, SensitivityJacobianMatchesCentralDifferences) {
   ::testing::Test::RecordProperty("worst_relative_error", std::to_string(worst));
 }
 
-}  // namespace
+}  // namespace amb1dof_predictor_test
 }  // namespace ambid::ident::pem

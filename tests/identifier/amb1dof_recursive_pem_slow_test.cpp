@@ -21,7 +21,7 @@
 #include "identifier/time_domain/loop_signals.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace amb1dof_recursive_pem_slow_test {
 
 TEST(RecursivePemSlow, CovarianceFactorStaysPositiveDefiniteOverAMillionSamples) {
   const testing::Amb1dofRecord record = testing::simulate_amb1dof_record(testing::noisy_record("lqr", 100.0, 31));
@@ -71,5 +71,5 @@ TEST(RecursivePemSlow, CovarianceFactorStaysPositiveDefiniteOverAMillionSamples)
   EXPECT_GE(estimator.samples(), 1000000u);
 }
 
-}  // namespace
+}  // namespace amb1dof_recursive_pem_slow_test
 }  // namespace ambid::ident

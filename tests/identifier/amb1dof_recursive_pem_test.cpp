@@ -25,7 +25,7 @@
 #include "plant_sim/amb1dof_parameters.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace amb1dof_recursive_pem_test {
 
 using testing::Amb1dofRecord;
 using testing::Amb1dofRecordOptions;
@@ -210,5 +210,5 @@ TEST(UdCovariance, IsTheCovarianceUpdate) {
   EXPECT_THROW(ud.forget(1.5), Error);
 }
 
-}  // namespace
+}  // namespace amb1dof_recursive_pem_test
 }  // namespace ambid::ident

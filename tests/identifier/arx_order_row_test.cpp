@@ -17,7 +17,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace arx_order_row_test {
 
 TEST(ArxOrderRow, OkidOneSecondWindowAgainstTheOrder) {
   const testing::ArxCase c = testing::arx_case("lqr", 1.0, 1e-7, 1e-3);
@@ -81,5 +81,5 @@ TEST(ArxOrderRow, WindowTooNoisyForFourStatesSaysSo) {
   EXPECT_GE(refused, 4);
 }
 
-}  // namespace
+}  // namespace arx_order_row_test
 }  // namespace ambid::ident

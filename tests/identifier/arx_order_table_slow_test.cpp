@@ -18,7 +18,7 @@
 #include "identifier/identify_experiment.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace arx_order_table_slow_test {
 
 const std::vector<double> kWindows = {0.5, 1.0, 2.0, 4.0, 8.0};
 const std::vector<Eigen::Index> kOrders = {8, 16, 32, 64, 0};  // 0: the default that grows
@@ -86,5 +86,5 @@ TEST(ArxOrderTable, WorstErrorAgainstWindowAndOrder) {
   for (const auto& f : failures) std::printf("failed: %s\n", f.c_str());
 }
 
-}  // namespace
+}  // namespace arx_order_table_slow_test
 }  // namespace ambid::ident

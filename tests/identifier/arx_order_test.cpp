@@ -14,7 +14,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace arx_order_test {
 
 using testing::random_matrix;
 using C = std::complex<double>;
@@ -102,5 +102,5 @@ TEST(ArxOrder, FixedLowOrderKeepsItsBiasTheGrowingOrderDoesNot) {
   EXPECT_LT(grown_long, 0.2 * fixed_long);
 }
 
-}  // namespace
+}  // namespace arx_order_test
 }  // namespace ambid::ident

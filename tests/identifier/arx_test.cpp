@@ -9,7 +9,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace arx_test {
 
 using testing::random_matrix;
 
@@ -210,5 +210,5 @@ TEST(Arx, BadArgumentsAreErrors) {
   EXPECT_THROW(fit_arx(Eigen::MatrixXd::Ones(50, 1), Eigen::MatrixXd::Ones(49, 1), o), Error);
 }
 
-}  // namespace
+}  // namespace arx_test
 }  // namespace ambid::ident

@@ -28,7 +28,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace clamped_samples_test {
 
 // Mean (4.36) error of the first 30 Markov parameters C A^j B, percent.
 double markov_error_percent(const DiscreteSystem& truth, const DiscreteSystem& model) {
@@ -172,5 +172,5 @@ TEST(ClampedSamples, PemLeavesThePredictionsFromClampedInputsOutOfItsCost) {
   EXPECT_GT(e_kept, 3.0 * e_left_out);
 }
 
-}  // namespace
+}  // namespace clamped_samples_test
 }  // namespace ambid::ident

@@ -10,7 +10,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace closed_loop_id_test {
 
 using testing::eigenvalue_error;
 using testing::markov_of;
@@ -254,5 +254,5 @@ TEST(KnownControllerClid, ShortOrUnexcitingDataAreInsufficient) {
   }
 }
 
-}  // namespace
+}  // namespace closed_loop_id_test
 }  // namespace ambid::ident

@@ -8,7 +8,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace era_test {
 
 using testing::eigenvalue_error;
 using testing::markov_of;
@@ -135,5 +135,5 @@ TEST(Era, SuggestedOrderIsTheLargestGap) {
   EXPECT_THROW(suggest_order(Eigen::VectorXd::Zero(3)), InsufficientData);
 }
 
-}  // namespace
+}  // namespace era_test
 }  // namespace ambid::ident

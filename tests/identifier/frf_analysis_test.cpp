@@ -19,7 +19,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_analysis_test {
 
 using test::kPi;
 
@@ -216,5 +216,5 @@ TEST(FrfAnalysis, RefusesAnExperimentWithoutExcitation) {
   EXPECT_THROW(analyse_frf(e), InsufficientData);
 }
 
-}  // namespace
+}  // namespace frf_analysis_test
 }  // namespace ambid::ident

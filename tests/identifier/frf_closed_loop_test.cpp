@@ -17,7 +17,7 @@
 #include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_closed_loop_test {
 
 using test::kPi;
 
@@ -248,5 +248,5 @@ TEST(FrfClosedLoopMimo, HadamardPatternSeparatesTheInputs) {
   EXPECT_THROW(estimate_periodic_frf(same, d2.u, d2.y, o), InsufficientData);
 }
 
-}  // namespace
+}  // namespace frf_closed_loop_test
 }  // namespace ambid::ident

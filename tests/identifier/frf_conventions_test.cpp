@@ -17,7 +17,7 @@
 #include "identifier/frf_welch.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_conventions_test {
 
 using test::kPi;
 
@@ -239,5 +239,5 @@ TEST(FrfConventions, ConfidenceRadiusFactor) {
   EXPECT_THROW(confidence_radius_factor(0.9, -1.0), Error);
 }
 
-}  // namespace
+}  // namespace frf_conventions_test
 }  // namespace ambid::ident

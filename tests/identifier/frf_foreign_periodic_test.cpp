@@ -26,7 +26,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_foreign_periodic_test {
 
 using test::kPi;
 constexpr double kT = 1e-4;
@@ -413,5 +413,5 @@ TEST(FrfForeignPeriodic, ADescriptionThatRContradictsIsIgnoredWithAWarning) {
   EXPECT_EQ(report.method, "periodic");
 }
 
-}  // namespace
+}  // namespace frf_foreign_periodic_test
 }  // namespace ambid::ident

@@ -12,7 +12,7 @@
 #include "identifier/frf_types.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_noise_test {
 
 using test::kPi;
 
@@ -143,5 +143,5 @@ TEST(FrfNoise, LineNoiseVarianceMatchesTheSimulatedNoise) {
   }
 }
 
-}  // namespace
+}  // namespace frf_noise_test
 }  // namespace ambid::ident

@@ -13,7 +13,7 @@
 #include "identifier/frequency_domain/frf_period_scatter.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_period_scatter_test {
 
 constexpr Eigen::Index kScatterPeriods = 19, kScatterLines = 200;
 
@@ -95,5 +95,5 @@ TEST(FrfPeriodScatter, RefusesTooFewPeriodsAndMixedShapes) {
   EXPECT_THROW(period_mean_variance(mixed, 1), Error);
 }
 
-}  // namespace
+}  // namespace frf_period_scatter_test
 }  // namespace ambid::ident

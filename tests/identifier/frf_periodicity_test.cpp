@@ -11,7 +11,7 @@
 #include "identifier/frequency_domain/frf_periodicity.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_periodicity_test {
 
 using test::kPi;
 
@@ -89,5 +89,5 @@ TEST(FrfPeriodicity, BadInputIsRefused) {
   EXPECT_THROW(detect_periodicity(Eigen::MatrixXd::Ones(10, 1), o), Error);
 }
 
-}  // namespace
+}  // namespace frf_periodicity_test
 }  // namespace ambid::ident

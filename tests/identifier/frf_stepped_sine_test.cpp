@@ -16,7 +16,7 @@
 #include "plant_sim/excitation.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_stepped_sine_test {
 
 using test::kPi;
 
@@ -113,5 +113,5 @@ TEST_F(SalesSteppedSine, Refusals) {
                InsufficientData);
 }
 
-}  // namespace
+}  // namespace frf_stepped_sine_test
 }  // namespace ambid::ident

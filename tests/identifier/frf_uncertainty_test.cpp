@@ -12,7 +12,7 @@
 #include "identifier/frequency_domain/frf_uncertainty.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_uncertainty_test {
 
 using test::kPi;
 using cd = std::complex<double>;
@@ -82,5 +82,5 @@ TEST(FrfUncertainty, MimoUsesSingularValuesAndOutputMultiplicativeForm) {
   EXPECT_THROW(uncertainty_envelope({}, nominal), Error);
 }
 
-}  // namespace
+}  // namespace frf_uncertainty_test
 }  // namespace ambid::ident

@@ -15,7 +15,7 @@
 #include "identifier/frf_welch.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace frf_welch_test {
 
 using test::kPi;
 
@@ -201,5 +201,5 @@ TEST(FrfWelch, RefusesBadInput) {
   EXPECT_THROW(estimate_welch_frf(r, r, Eigen::MatrixXd(r.topRows(10)), o), Error);
 }
 
-}  // namespace
+}  // namespace frf_welch_test
 }  // namespace ambid::ident

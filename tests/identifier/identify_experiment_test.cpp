@@ -19,7 +19,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace identify_experiment_test {
 
 using ::testing::HasSubstr;
 
@@ -148,5 +148,5 @@ TEST(IdentifyExperiment, SegmentCarriesTheControllerState) {
   EXPECT_THROW(experiment_segment(e, 10, 5), Error);
 }
 
-}  // namespace
+}  // namespace identify_experiment_test
 }  // namespace ambid::ident

@@ -16,7 +16,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace import_identify_test {
 
 namespace fs = std::filesystem;
 
@@ -58,7 +58,7 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
 
   Eigen::MatrixXd matrix(n, 8);  // columns [r2, x, u1, t, i2, r1, u2, i1]
   matrix << e.r.col(1), e.y.col(0), e.u.col(0), e.t, e.y.col(2), e.r.col(0), e.u.col(1), e.y.col(1);
-  test::write_mat(dir / "matrix.mat", {{"log", matrix}});
+  ambid::test::write_mat(dir / "matrix.mat", {{"log", matrix}});
   const Model from_matrix =
       identify_experiment(import_experiment(dir / "matrix.mat",
                                             mapping("log(:,4)", {"x=log(:,2)", "i1=log(:,8)", "i2=log(:,5)"},
@@ -68,13 +68,13 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
                           deadbeat);
   expect_same_parameters(from_matrix, original, 0.0, "MAT matrix");
 
-  test::write_mat(dir / "vectors.mat", {{"gap_um", e.y.col(0) * 1e6},
-                                        {"coil1_mA", e.y.col(1) * 1e3},
-                                        {"coil2_mA", e.y.col(2) * 1e3},
-                                        {"cmd1", e.u.col(0)},
-                                        {"cmd2", e.u.col(1)},
-                                        {"exc1", e.r.col(0)},
-                                        {"exc2", e.r.col(1)}});
+  ambid::test::write_mat(dir / "vectors.mat", {{"gap_um", e.y.col(0) * 1e6},
+                                               {"coil1_mA", e.y.col(1) * 1e3},
+                                               {"coil2_mA", e.y.col(2) * 1e3},
+                                               {"cmd1", e.u.col(0)},
+                                               {"cmd2", e.u.col(1)},
+                                               {"exc1", e.r.col(0)},
+                                               {"exc2", e.r.col(1)}});
   ImportOptions no_time = options;
   no_time.sample_time = e.sample_time;
   const Model from_vectors =
@@ -104,5 +104,5 @@ TEST(ImportIdentify, MatAndCsvExportsIdentifyLikeTheSiOriginal) {
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace import_identify_test
 }  // namespace ambid::ident

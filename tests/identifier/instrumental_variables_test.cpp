@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace instrumental_variables_test {
 
 struct Problem {
   Eigen::MatrixXd phi, z, instruments;
@@ -79,5 +79,5 @@ TEST(InstrumentalVariables, BadInputIsRefused) {
   EXPECT_THROW(solve_instrumental_variables(p.phi, p.z, useless, {"s", "1"}), InsufficientData);
 }
 
-}  // namespace
+}  // namespace instrumental_variables_test
 }  // namespace ambid::ident

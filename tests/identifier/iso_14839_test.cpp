@@ -13,7 +13,7 @@
 #include "identifier/iso_14839.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace iso_14839_test {
 
 using test::kPi;
 
@@ -102,5 +102,5 @@ TEST(Iso14839, PerLoopPeaksOfATwoLoopSensitivity) {
   EXPECT_THROW(sensitivity_peaks(S, {"u1"}), Error);
 }
 
-}  // namespace
+}  // namespace iso_14839_test
 }  // namespace ambid::ident

@@ -8,7 +8,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace kalman_gain_test {
 
 using testing::markov_of;
 using testing::matrix_with_eigenvalues;
@@ -50,5 +50,5 @@ TEST(KalmanGain, UnobservableModelIsInsufficientData) {
   EXPECT_THROW(kalman_gain_from_markov(A, Cm, N, 9), Error);
 }
 
-}  // namespace
+}  // namespace kalman_gain_test
 }  // namespace ambid::ident

@@ -39,7 +39,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace lamstf_projection_filter_test {
 
 constexpr double kT = 0.01;
 constexpr Eigen::Index kSamples = 6000;
@@ -172,5 +172,5 @@ TEST(LamstfProjectionFilter, TwoAndAHalfPercentNoise) {
   }
 }
 
-}  // namespace
+}  // namespace lamstf_projection_filter_test
 }  // namespace ambid::ident

@@ -10,7 +10,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace least_squares_test {
 
 using testing::random_matrix;
 
@@ -175,5 +175,5 @@ TEST(LeastSquares, BadInputsAreErrors) {
   EXPECT_THROW(LeastSquaresAccumulator(2, 1, {"only one"}), Error);
 }
 
-}  // namespace
+}  // namespace least_squares_test
 }  // namespace ambid::ident

@@ -13,7 +13,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace maglev_greybox_test {
 
 struct Case {
   double sample_time;
@@ -143,5 +143,5 @@ TEST(MaglevGreyBox, BadInputIsNamed) {
   EXPECT_THROW(fit_maglev_greybox(in), InsufficientData);  // a record at rest: nothing to fit
 }
 
-}  // namespace
+}  // namespace maglev_greybox_test
 }  // namespace ambid::ident

@@ -12,7 +12,7 @@
 #include "plant_sim/maglev_loop.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace maglev_identify_test {
 
 TEST(MaglevIdentify, GreyboxWritesTheLinearisationAtTheMeasuredPointAndTheNominalEquilibriumGap) {
   sim::MaglevParameters truth = sim::MaglevParameters::nominal();
@@ -65,5 +65,5 @@ TEST(MaglevIdentify, FamilyBoundMethodsNameTheFamiliesThatOfferThem) {
             "(known plant models: amb1dof_voltage, maglev1coil_voltage, lamstf)");
 }
 
-}  // namespace
+}  // namespace maglev_identify_test
 }  // namespace ambid::ident

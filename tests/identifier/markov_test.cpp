@@ -11,7 +11,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace markov_test {
 
 using testing::markov_of;
 using testing::matrix_with_eigenvalues;
@@ -234,5 +234,5 @@ TEST(Markov, StateSpaceMarkovAndErrorMeasure) {
   EXPECT_THROW(markov_errors_percent(y, est, 0, 2), Error);  // true Y_0 = 0
 }
 
-}  // namespace
+}  // namespace markov_test
 }  // namespace ambid::ident

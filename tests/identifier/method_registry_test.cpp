@@ -13,7 +13,7 @@
 #include "core/error.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace method_registry_test {
 
 using ::testing::HasSubstr;
 
@@ -48,5 +48,5 @@ TEST(MethodRegistry, ReadmeCarriesTheTableVerbatim) {
   EXPECT_THAT(readme.str(), HasSubstr(block)) << "README.md, section \"Using it\", should carry:\n" << block;
 }
 
-}  // namespace
+}  // namespace method_registry_test
 }  // namespace ambid::ident

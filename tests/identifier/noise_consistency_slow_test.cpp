@@ -20,7 +20,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace noise_consistency_slow_test {
 
 struct Errors {
   double worst = 0.0;
@@ -131,5 +131,5 @@ TEST(NoiseConsistency, PredictionErrorSigmaIsCalibrated) {
   }
 }
 
-}  // namespace
+}  // namespace noise_consistency_slow_test
 }  // namespace ambid::ident

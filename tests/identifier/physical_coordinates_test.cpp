@@ -9,7 +9,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace physical_coordinates_test {
 
 using testing::random_matrix;
 
@@ -93,5 +93,5 @@ TEST(PhysicalCoordinates, MeasuredCoordinatesWithAKnownSquareC) {
   EXPECT_LT((back.C - phys.C).norm(), 1e-12);
 }
 
-}  // namespace
+}  // namespace physical_coordinates_test
 }  // namespace ambid::ident

@@ -10,7 +10,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace projection_filter_test {
 
 using testing::eigenvalue_error;
 using testing::markov_of;
@@ -201,5 +201,5 @@ TEST(ProjectionFilter, UnexcitedOrShortDataAreInsufficient) {
                Error);
 }
 
-}  // namespace
+}  // namespace projection_filter_test
 }  // namespace ambid::ident

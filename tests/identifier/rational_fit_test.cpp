@@ -15,7 +15,7 @@
 #include "identifier/frequency_domain/rational_fit_order.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace rational_fit_test {
 
 using test::kPi;
 using cd = std::complex<double>;
@@ -212,5 +212,5 @@ TEST(RationalFit, RefusesBadInput) {
   EXPECT_THROW(fit_rational(bad, G, Eigen::VectorXd(), o), Error);
 }
 
-}  // namespace
+}  // namespace rational_fit_test
 }  // namespace ambid::ident

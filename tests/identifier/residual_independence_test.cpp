@@ -15,7 +15,7 @@
 #include "core/error.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace residual_independence_test {
 
 const std::vector<std::string> kE = {"x", "i1"}, kR = {"r1", "r2"};
 
@@ -101,5 +101,5 @@ TEST(ResidualIndependence, BadInputsAreRefused) {
   EXPECT_EQ(residual_independence(e, kE, r, kR, 5).correlations, 0);
 }
 
-}  // namespace
+}  // namespace residual_independence_test
 }  // namespace ambid::ident

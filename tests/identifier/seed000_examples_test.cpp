@@ -20,7 +20,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace seed000_examples_test {
 
 struct Example {
   std::string parameter;  // changed by +20 %
@@ -61,5 +61,5 @@ TEST(Seed000Examples, AmplifierGainChangeOnTheNonlinearLoop) {
   check_example({"kw1", "v8"}, "closed-loop", 0.002, 1e-3);  // measured: +20.00 %, rest <= 1.9e-4
 }
 
-}  // namespace
+}  // namespace seed000_examples_test
 }  // namespace ambid::ident

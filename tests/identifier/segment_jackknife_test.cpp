@@ -17,7 +17,7 @@
 #include "time_domain_fixtures.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace segment_jackknife_test {
 
 Experiment short_run(double duration) {
   sim::ScenarioOptions s;
@@ -152,5 +152,5 @@ TEST(SegmentJackknife, ClosedLoopSigmaIsCalibrated) {
   }
 }
 
-}  // namespace
+}  // namespace segment_jackknife_test
 }  // namespace ambid::ident

@@ -11,7 +11,7 @@
 #include "identifier/frequency_domain/sensitivity_function.hpp"
 
 namespace ambid::ident {
-namespace {
+namespace sensitivity_function_test {
 
 using test::kPi;
 
@@ -67,5 +67,5 @@ TEST(SensitivityFunction, ControllerReadingThePlantInputIsFoldedIn) {
   EXPECT_THROW(loop_response(c, wrong, w), Error);
 }
 
-}  // namespace
+}  // namespace sensitivity_function_test
 }  // namespace ambid::ident

@@ -11,7 +11,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace alerts_follow_test {
 
 using namespace std::chrono_literals;
 
@@ -57,5 +57,5 @@ TEST(AlertsFollow, EachAlertIsPrintedOnceAcrossAWriterReconnect) {
   EXPECT_EQ(occurrences(r.output, "WARN   bearing-1  R2"), 1u) << r.output;
 }
 
-}  // namespace
+}  // namespace alerts_follow_test
 }  // namespace ambid::testing

@@ -14,7 +14,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace audit_cli_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -127,5 +127,5 @@ TEST(AuditCli, ReportRendersInHeadlessChromium) {
   EXPECT_GT(report, 5 * empty) << "report " << report << " bytes, empty page " << empty << " bytes";
 }
 
-}  // namespace
+}  // namespace audit_cli_test
 }  // namespace ambid

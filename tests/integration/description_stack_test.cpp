@@ -26,7 +26,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace description_stack_test {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -207,5 +207,5 @@ TEST(DescriptionStack, RecordKeepsTheDescriptionReplayAndIdentifyGiveTheSamePara
   EXPECT_NEAR(r1(recorded, 0), 17.5, 0.1 * 17.5);
 }
 
-}  // namespace
+}  // namespace description_stack_test
 }  // namespace ambid::testing

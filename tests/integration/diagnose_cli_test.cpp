@@ -18,7 +18,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace diagnose_cli_test {
 
 using cli_test::fresh_dir;
 using cli_test::read_json;
@@ -330,5 +330,5 @@ TEST(DiagnoseCli, BadInputIsAClearErrorAndANonZeroExit) {
   }
 }
 
-}  // namespace
+}  // namespace diagnose_cli_test
 }  // namespace ambid

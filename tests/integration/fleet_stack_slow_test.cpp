@@ -19,7 +19,7 @@
 #include "fleet_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace fleet_stack_slow_test {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -93,5 +93,5 @@ TEST(FleetStack, EightBearingsTwoIdentifiersOneDiagnosticsFaultAlertsOnlyItsBear
   EXPECT_GE(raised, 1) << all.output;
 }
 
-}  // namespace
+}  // namespace fleet_stack_slow_test
 }  // namespace ambid::testing

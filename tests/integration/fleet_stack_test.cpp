@@ -10,7 +10,7 @@
 #include "fleet_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace fleet_stack_test {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -33,5 +33,5 @@ TEST(FleetStack, APlantServedByTwoIdentifiersIsReported) {
   EXPECT_THAT(status.output, HasSubstr("served twice")) << status.output;
 }
 
-}  // namespace
+}  // namespace fleet_stack_test
 }  // namespace ambid::testing

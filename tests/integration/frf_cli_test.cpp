@@ -23,7 +23,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid {
-namespace {
+namespace frf_cli_test {
 
 using cli_test::CommandResult;
 using cli_test::run_ambid;
@@ -232,5 +232,5 @@ TEST(FrfCli, DataThatCannotSupportAnFrfIsRefused) {
   EXPECT_FALSE(fs::exists(dir / "bad" / "frf.json"));
 }
 
-}  // namespace
+}  // namespace frf_cli_test
 }  // namespace ambid

@@ -11,7 +11,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace identifier_gap_test {
 
 using ::testing::HasSubstr;
 
@@ -38,5 +38,5 @@ TEST(IdentifierGap, AStalledIdentifierAlertsTheSamplesItMissed) {
   EXPECT_TRUE(stack.running("identifier"));
 }
 
-}  // namespace
+}  // namespace identifier_gap_test
 }  // namespace ambid::testing

@@ -17,7 +17,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace identifier_uncertainty_test {
 
 TEST(IdentifierUncertainty, ClosedLoopWindowsCarryTheirJackknifeSigma) {
   Stack stack("stack_identifier_jackknife", 231);
@@ -44,5 +44,5 @@ TEST(IdentifierUncertainty, ClosedLoopWindowsCarryTheirJackknifeSigma) {
   EXPECT_LT(median, 2.0 * std::sqrt(variance));
 }
 
-}  // namespace
+}  // namespace identifier_uncertainty_test
 }  // namespace ambid::testing

@@ -18,7 +18,7 @@
 #include "plant_sim/amb1dof_physical.hpp"
 
 namespace ambid {
-namespace {
+namespace identify_cli_test {
 
 using cli_test::CommandResult;
 using cli_test::fresh_dir;
@@ -141,5 +141,5 @@ TEST(IdentifyCli, BadInputFailsClearly) {
   EXPECT_FALSE(fs::exists(dir / "model.json"));
 }
 
-}  // namespace
+}  // namespace identify_cli_test
 }  // namespace ambid

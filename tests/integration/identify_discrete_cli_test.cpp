@@ -23,7 +23,7 @@
 #include "core/state_space.hpp"
 
 namespace ambid {
-namespace {
+namespace identify_discrete_cli_test {
 
 using cli_test::CommandResult;
 using cli_test::fresh_dir;
@@ -126,5 +126,5 @@ TEST(IdentifyCli, ModelWithoutAContinuousEquivalentKeepsTheDiscreteModel) {
   }
 }
 
-}  // namespace
+}  // namespace identify_discrete_cli_test
 }  // namespace ambid

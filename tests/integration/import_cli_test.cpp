@@ -13,7 +13,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace import_cli_test {
 
 using cli_test::CommandResult;
 using cli_test::fresh_dir;
@@ -112,5 +112,5 @@ TEST(ImportCli, IdentifyAndDiagnoseCountTheClampedSamples) {
   EXPECT_THAT(r.output, HasSubstr("not exogenous): " + std::to_string(read.clamped_samples) + " of 4000"));
 }
 
-}  // namespace
+}  // namespace import_cli_test
 }  // namespace ambid

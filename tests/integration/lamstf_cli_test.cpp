@@ -23,7 +23,7 @@
 #include "plant_sim/lamstf.hpp"
 
 namespace ambid {
-namespace {
+namespace lamstf_cli_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -115,5 +115,5 @@ TEST(LamstfCli, TwoAndAHalfPercentNoiseAtOrBelowTable42) {
   EXPECT_LE(identified_error(dir, stem, "okid", "--arx-order 8"), 3.741);
 }
 
-}  // namespace
+}  // namespace lamstf_cli_test
 }  // namespace ambid

@@ -17,7 +17,7 @@
 #include "core/experiment_io.hpp"
 
 namespace ambid {
-namespace {
+namespace maglev_cli_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -117,5 +117,5 @@ TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {
   EXPECT_THAT(r.output, HasSubstr("--rig and --levels are settings of a rig's own loop"));
 }
 
-}  // namespace
+}  // namespace maglev_cli_test
 }  // namespace ambid

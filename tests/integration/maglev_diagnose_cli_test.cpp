@@ -14,7 +14,7 @@
 #include "cli_run.hpp"
 
 namespace ambid {
-namespace {
+namespace maglev_diagnose_cli_test {
 
 using cli_test::fresh_dir;
 using cli_test::read_json;
@@ -70,5 +70,5 @@ TEST(MaglevDiagnoseCli, ADirectoryOfRecordsNamesTheHotCoil) {
   EXPECT_THAT(r.output, HasSubstr("method 'pem' is defined for plant model 'amb1dof_voltage' only"));
 }
 
-}  // namespace
+}  // namespace maglev_diagnose_cli_test
 }  // namespace ambid

@@ -11,7 +11,7 @@
 #include "cli_run.hpp"
 
 namespace ambid {
-namespace {
+namespace progress_cli_test {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -64,5 +64,5 @@ TEST(ProgressCli, AuditDrawsItsCandidatesOnATerminalOnly) {
   EXPECT_THAT(r.output, Not(HasSubstr("elapsed")));
 }
 
-}  // namespace
+}  // namespace progress_cli_test
 }  // namespace ambid

@@ -14,7 +14,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace retention_stack_test {
 
 using ::testing::HasSubstr;
 
@@ -70,5 +70,5 @@ TEST(RetentionStack, TheDaemonAggregatesWindowsOlderThanItsRetention) {
   EXPECT_EQ(double(folded + std::int64_t(windows.size())), taken) << metrics;
 }
 
-}  // namespace
+}  // namespace retention_stack_test
 }  // namespace ambid::testing

@@ -18,7 +18,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace rig_stack_test {
 
 using ::testing::HasSubstr;
 
@@ -59,5 +59,5 @@ TEST(RigStack, CoilFaultOnTheBoardGivesErrorAlertThenStaleWhenTheBoardDies) {
   EXPECT_THAT(stack.log("plant"), HasSubstr("rig 127.0.0.1:19185 silent"));
 }
 
-}  // namespace
+}  // namespace rig_stack_test
 }  // namespace ambid::testing

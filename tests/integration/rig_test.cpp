@@ -23,7 +23,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace rig_test {
 
 using ::testing::HasSubstr;
 using ::testing::Not;
@@ -293,5 +293,5 @@ TEST(Rig, EmulatorRefusesBadOptionsNamingThem) {
   }
 }
 
-}  // namespace
+}  // namespace rig_test
 }  // namespace ambid::testing

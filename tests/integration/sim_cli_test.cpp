@@ -12,7 +12,7 @@
 #include "stack_support.hpp"
 
 namespace ambid {
-namespace {
+namespace sim_cli_test {
 
 using ::testing::HasSubstr;
 namespace fs = std::filesystem;
@@ -71,5 +71,5 @@ TEST(SimCli, BadOptionsFailClearly) {
   EXPECT_FALSE(fs::exists(dir / "x.csv"));
 }
 
-}  // namespace
+}  // namespace sim_cli_test
 }  // namespace ambid

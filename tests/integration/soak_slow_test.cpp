@@ -47,7 +47,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace soak_slow_test {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
@@ -272,5 +272,5 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   EXPECT_LT(span - identified - alerted, 0.2 * span) << "plant time neither identified nor named by a gap alert";
 }
 
-}  // namespace
+}  // namespace soak_slow_test
 }  // namespace ambid::testing

@@ -15,7 +15,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace source_fallback_test {
 
 using ::testing::HasSubstr;
 
@@ -72,5 +72,5 @@ TEST(SourceFallback, ASourceFailingAtRuntimeFallsBackToThePreviousOneAndAlerts) 
   EXPECT_TRUE(stack.running("plant")) << stack.log("plant");
 }
 
-}  // namespace
+}  // namespace source_fallback_test
 }  // namespace ambid::testing

@@ -15,7 +15,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace stack_loopback_test {
 
 using ::testing::HasSubstr;
 
@@ -48,5 +48,5 @@ TEST(StackLoopback, WholeStackAndOperatorCommandsSendNothingOffLoopback) {
       << capture.elsewhere().size() << " packets left loopback, first: " << capture.elsewhere().front();
 }
 
-}  // namespace
+}  // namespace stack_loopback_test
 }  // namespace ambid::testing

@@ -16,7 +16,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace stack_malformed_test {
 
 using namespace std::chrono_literals;
 
@@ -176,11 +176,11 @@ TEST(StackMalformed, PlantRefusesExcitationOutsideItsLimits) {
   EXPECT_THAT(log, ::testing::HasSubstr("unknown excitation kind 'square'"));
 }
 
-}  // namespace
+}  // namespace stack_malformed_test
 }  // namespace ambid::testing
 
 namespace ambid::testing {
-namespace {
+namespace stack_malformed_test {
 
 // A method the identifier does not know is refused at start, naming the known ones; the
 // daemon exits 1 before it joins the bus (domain 196).
@@ -194,5 +194,5 @@ TEST(StackMalformed, IdentifierRefusesAnUnknownMethodAtStart) {
   EXPECT_THAT(r.output, ::testing::HasSubstr("closed-loop"));
 }
 
-}  // namespace
+}  // namespace stack_malformed_test
 }  // namespace ambid::testing

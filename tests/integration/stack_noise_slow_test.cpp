@@ -20,7 +20,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace stack_noise_slow_test {
 
 using ::testing::HasSubstr;
 
@@ -84,5 +84,5 @@ TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTim
   }
 }
 
-}  // namespace
+}  // namespace stack_noise_slow_test
 }  // namespace ambid::testing

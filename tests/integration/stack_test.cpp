@@ -17,7 +17,7 @@
 #include "stack_support.hpp"
 
 namespace ambid::testing {
-namespace {
+namespace stack_test {
 
 using ::testing::HasSubstr;
 
@@ -237,5 +237,5 @@ TEST(Stack, RecordWritesAnExperimentFromTheBus) {
   EXPECT_NEAR(e.r.cwiseAbs().maxCoeff(), 1.0, 1e-9);  // the PRBS of 1 V was recorded
 }
 
-}  // namespace
+}  // namespace stack_test
 }  // namespace ambid::testing

@@ -14,7 +14,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid {
-namespace {
+namespace maglev_rig_identify_test {
 
 sim::MaglevParameters truth() {
   sim::MaglevParameters p = sim::MaglevParameters::nominal();
@@ -62,5 +62,5 @@ TEST(MaglevRigIdentify, PhysicalParametersAtTheRigsSampleTimes) {
   }
 }
 
-}  // namespace
+}  // namespace maglev_rig_identify_test
 }  // namespace ambid

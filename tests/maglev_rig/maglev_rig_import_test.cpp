@@ -17,7 +17,7 @@
 #include "support/maglev_records.hpp"
 
 namespace ambid {
-namespace {
+namespace maglev_rig_import_test {
 
 namespace fs = std::filesystem;
 
@@ -100,5 +100,5 @@ TEST_F(MaglevRigImport, ColumnVectorsWithTimeGiveTheSameIdentification) {
   expect_same_identification(greybox(imported.experiment), *direct_);
 }
 
-}  // namespace
+}  // namespace maglev_rig_import_test
 }  // namespace ambid

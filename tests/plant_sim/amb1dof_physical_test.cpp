@@ -7,7 +7,7 @@
 #include "plant_sim/amb1dof_voltage.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace amb1dof_physical_test {
 
 using ::testing::HasSubstr;
 
@@ -54,5 +54,5 @@ TEST(Amb1dofPhysical, BadInputIsNamed) {
   EXPECT_THAT([&] { amb1dof_structure_parameters(small); }, ::testing::ThrowsMessage<Error>(HasSubstr("A 2x2")));
 }
 
-}  // namespace
+}  // namespace amb1dof_physical_test
 }  // namespace ambid::sim

@@ -10,7 +10,7 @@
 #include "plant_sim/amb1dof_physical.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace amb1dof_voltage_test {
 
 using ::testing::HasSubstr;
 
@@ -211,5 +211,5 @@ TEST(Amb1dofVoltage, PerturbedCoilAndAmplifierMoveV5AndV8ByExactlyTwentyPercent)
     EXPECT_NEAR(v.at(key), nominal.at(key), 1e-14 * nominal.at(key)) << key;
 }
 
-}  // namespace
+}  // namespace amb1dof_voltage_test
 }  // namespace ambid::sim

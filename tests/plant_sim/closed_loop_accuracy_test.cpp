@@ -10,7 +10,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace closed_loop_accuracy_test {
 
 Experiment run(int substeps) {
   ScenarioOptions o;
@@ -52,5 +52,5 @@ TEST(ClosedLoopAccuracy, DefaultSubstepsFarBelowIdentificationResolution) {
   EXPECT_LT(error(2), 1e-6 * 1e-4);
 }
 
-}  // namespace
+}  // namespace closed_loop_accuracy_test
 }  // namespace ambid::sim

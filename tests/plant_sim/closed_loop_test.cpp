@@ -13,7 +13,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace closed_loop_test {
 
 using ::testing::HasSubstr;
 
@@ -209,5 +209,5 @@ TEST(ClosedLoop, DivergenceIsReportedWithTime) {
               ::testing::ThrowsMessage<Error>(HasSubstr("non-finite at t =")));
 }
 
-}  // namespace
+}  // namespace closed_loop_test
 }  // namespace ambid::sim

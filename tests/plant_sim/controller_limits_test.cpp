@@ -8,7 +8,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace controller_limits_test {
 
 TEST(ControllerLimits, SimulationAndReplayAgreeOnClampsAndControllerOutput) {
   ScenarioOptions o;
@@ -41,5 +41,5 @@ TEST(ControllerLimits, SimulationAndReplayAgreeOnClampsAndControllerOutput) {
   EXPECT_EQ(replay.states.col(0).cwiseAbs().maxCoeff(), 0.8 * reach);  // the state clamp held it
 }
 
-}  // namespace
+}  // namespace controller_limits_test
 }  // namespace ambid::sim

@@ -12,7 +12,7 @@
 #include "plant_sim/lqr.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace dare_test {
 
 Eigen::MatrixXd scalar(double v) { return Eigen::MatrixXd::Constant(1, 1, v); }
 
@@ -168,5 +168,5 @@ TEST(Dare, UndetectablePairIsNamedInObserverError) {
   }
 }
 
-}  // namespace
+}  // namespace dare_test
 }  // namespace ambid::sim

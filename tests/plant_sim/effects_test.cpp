@@ -17,7 +17,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace effects_test {
 
 using ::testing::HasSubstr;
 constexpr double kPi = std::numbers::pi;
@@ -283,5 +283,5 @@ TEST(Effects, AirGapAndRotorMassChangeTheMechanics) {
               force(p.x0) / (p.m + dm), 1e-9);
 }
 
-}  // namespace
+}  // namespace effects_test
 }  // namespace ambid::sim

@@ -11,7 +11,7 @@
 #include "plant_sim/excitation.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace excitation_test {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
@@ -261,5 +261,5 @@ TEST(SteppedSine, WholePeriodsAtSnappedFrequencies) {
   EXPECT_EQ(e.samples.rows(), total);
 }
 
-}  // namespace
+}  // namespace excitation_test
 }  // namespace ambid::sim

@@ -12,7 +12,7 @@
 #include "plant_sim/linear_plant.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace integrator_test {
 
 constexpr double kSampleTime = 1e-4;
 constexpr int kSamples = 50;  // 5 ms
@@ -122,5 +122,5 @@ TEST(Integrator, RefusesBadArgumentsAndSurfacesTouchdown) {
       ::testing::ThrowsMessage<Error>(HasSubstr("rotor touched the bearing")));
 }
 
-}  // namespace
+}  // namespace integrator_test
 }  // namespace ambid::sim

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 namespace ambid::sim {
-namespace {
+namespace lamstf_test {
 
 TEST(Lamstf, ShapeAndNames) {
   const NamedSystem s = lamstf();
@@ -56,5 +56,5 @@ TEST(Lamstf, OpenLoopEigenvaluesMatchTable31) {
   }
 }
 
-}  // namespace
+}  // namespace lamstf_test
 }  // namespace ambid::sim

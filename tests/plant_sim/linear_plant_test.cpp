@@ -7,7 +7,7 @@
 #include "plant_sim/sales_rotor.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace linear_plant_test {
 
 using ::testing::HasSubstr;
 
@@ -51,5 +51,5 @@ TEST(LinearPlant, RefusesInconsistentInput) {
   EXPECT_THROW(plant.derivative(Eigen::Vector3d::Zero(), Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)), Error);
 }
 
-}  // namespace
+}  // namespace linear_plant_test
 }  // namespace ambid::sim

@@ -12,7 +12,7 @@
 #include "plant_sim/linear_plant.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace linearize_test {
 
 // Largest relative error over the entries where `exact` is non-zero; entries where it is zero
 // must be tiny against the largest entry of their row of `exact`.
@@ -84,5 +84,5 @@ TEST(Linearize, RefusesBadOptions) {
   EXPECT_THROW(linearize(plant, no_step), Error);
 }
 
-}  // namespace
+}  // namespace linearize_test
 }  // namespace ambid::sim

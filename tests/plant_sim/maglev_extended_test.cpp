@@ -11,7 +11,7 @@
 #include "plant_sim/maglev_extended.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace maglev_extended_test {
 
 using ::testing::HasSubstr;
 
@@ -135,5 +135,5 @@ TEST(MaglevExtended, BadEffectsAndTouchesAreClearErrors) {
       ::testing::ThrowsMessage<Error>(HasSubstr("the body touched the ground")));
 }
 
-}  // namespace
+}  // namespace maglev_extended_test
 }  // namespace ambid::sim

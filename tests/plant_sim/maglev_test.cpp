@@ -14,7 +14,7 @@
 #include "plant_sim/maglev_loop.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace maglev_test {
 
 constexpr double kG = 9.81;
 
@@ -173,5 +173,5 @@ TEST(PlantFamilies, UnknownFamilyIsRefusedWithTheKnownOnes) {
   EXPECT_THROW(simulate_scenario(o), Error);  // the rig's errors are rig settings
 }
 
-}  // namespace
+}  // namespace maglev_test
 }  // namespace ambid::sim

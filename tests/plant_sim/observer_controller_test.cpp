@@ -14,7 +14,7 @@
 #include "plant_sim/observer_controller.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace observer_controller_test {
 
 constexpr double kT = 1e-4;
 const std::vector<std::string> kInputs = {"u1", "u2"};
@@ -152,5 +152,5 @@ TEST(ObserverController, RejectsBadOptions) {
                Error);
 }
 
-}  // namespace
+}  // namespace observer_controller_test
 }  // namespace ambid::sim

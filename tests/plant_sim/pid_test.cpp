@@ -14,7 +14,7 @@
 #include "plant_sim/sales_rotor.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace pid_test {
 
 DiscreteSystem as_system(const StateSpaceController& c) { return DiscreteSystem{c.A, c.B, c.C, c.D, c.sample_time}; }
 
@@ -156,5 +156,5 @@ TEST(Pid, RejectsBadLoops) {
   EXPECT_THROW(lead_lag_controller({{"x", {{"u", 1.0}}, 1.0, {{1e-3, 0.0}}}}, 1e-4, {"u"}), Error);
 }
 
-}  // namespace
+}  // namespace pid_test
 }  // namespace ambid::sim

@@ -12,7 +12,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace reconstruct_excitation_test {
 
 namespace fs = std::filesystem;
 
@@ -73,5 +73,5 @@ TEST(ReconstructExcitation, EqualsTheTrueExcitationWhereNoClampActedAndMarksTheC
   fs::remove_all(dir);
 }
 
-}  // namespace
+}  // namespace reconstruct_excitation_test
 }  // namespace ambid::sim

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 namespace ambid::sim {
-namespace {
+namespace sales_rotor_test {
 
 TEST(SalesRotor, MatricesAndUnstablePole) {
   const NamedSystem s = sales_rotor();
@@ -23,5 +23,5 @@ TEST(SalesRotor, MatricesAndUnstablePole) {
   EXPECT_NEAR(p[0].imag(), 0.0, 1e-12);
 }
 
-}  // namespace
+}  // namespace sales_rotor_test
 }  // namespace ambid::sim

@@ -10,7 +10,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::sim {
-namespace {
+namespace scenario_test {
 
 using ::testing::HasSubstr;
 
@@ -96,5 +96,5 @@ TEST(Scenario, BadOptionsAreNamed) {
   EXPECT_THAT([&] { build_scenario(o); }, ::testing::ThrowsMessage<Error>(HasSubstr("position noise")));
 }
 
-}  // namespace
+}  // namespace scenario_test
 }  // namespace ambid::sim

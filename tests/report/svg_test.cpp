@@ -14,7 +14,7 @@
 #include "services/report/atomic_file.hpp"
 
 namespace ambid::report {
-namespace {
+namespace svg_test {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
@@ -167,5 +167,5 @@ TEST(AtomicFile, WritesCreatesDirectoriesAndReplaces) {
   std::filesystem::remove_all(directory);
 }
 
-}  // namespace
+}  // namespace svg_test
 }  // namespace ambid::report

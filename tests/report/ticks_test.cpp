@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 
 namespace ambid::report {
-namespace {
+namespace ticks_test {
 
 using ::testing::DoubleNear;
 using ::testing::ElementsAre;
@@ -77,5 +77,5 @@ TEST(LinearTicks, FixedRangeKeepsBoundsExactly) {
   EXPECT_THAT(ticks.labels, ElementsAre("-5", "0", "5", "10", "15", "20"));
 }
 
-}  // namespace
+}  // namespace ticks_test
 }  // namespace ambid::report

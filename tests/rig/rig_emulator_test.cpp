@@ -13,7 +13,7 @@
 #include "services/rig/rig_frame.hpp"
 
 namespace ambid::rig {
-namespace {
+namespace rig_emulator_test {
 
 using namespace std::chrono_literals;
 
@@ -125,5 +125,5 @@ TEST(RigEmulator, ASecondSocketCannotTakeTheSessionWhileTheLeaseHolds) {
   EXPECT_TRUE(intruder.await<RigStatus>(2000ms));
 }
 
-}  // namespace
+}  // namespace rig_emulator_test
 }  // namespace ambid::rig

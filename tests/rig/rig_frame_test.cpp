@@ -14,7 +14,7 @@
 #include "core/error.hpp"
 
 namespace ambid::rig {
-namespace {
+namespace rig_frame_test {
 
 using ::testing::HasSubstr;
 
@@ -243,5 +243,5 @@ TEST(RigFrame, FitTextCutsLongTextsAtACharacterBoundary) {
   EXPECT_EQ(*back.frame, nack);
 }
 
-}  // namespace
+}  // namespace rig_frame_test
 }  // namespace ambid::rig

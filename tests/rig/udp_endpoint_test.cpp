@@ -8,7 +8,7 @@
 #include "core/error.hpp"
 
 namespace ambid::rig {
-namespace {
+namespace udp_endpoint_test {
 
 using ::testing::HasSubstr;
 
@@ -54,5 +54,5 @@ TEST(UdpEndpoint, DatagramArrivesWholeWithItsSender) {
   EXPECT_EQ(d->from, a.local());
 }
 
-}  // namespace
+}  // namespace udp_endpoint_test
 }  // namespace ambid::rig

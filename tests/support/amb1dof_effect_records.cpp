@@ -18,7 +18,7 @@
 #include "support/amb1dof_records.hpp"
 
 namespace ambid::test_support {
-namespace {
+namespace amb1dof_effect_records {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMaxModes = 4;
@@ -243,7 +243,8 @@ class SensorNoise {
   std::normal_distribution<double> normal_{0.0, 1.0};
 };
 
-}  // namespace
+}  // namespace amb1dof_effect_records
+using namespace amb1dof_effect_records;
 
 const std::vector<std::string>& effect_record_controllers() {
   static const std::vector<std::string> names = {"lqr", "observer", "pid", "leadlag"};

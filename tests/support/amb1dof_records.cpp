@@ -18,7 +18,7 @@
 #include "plant_sim/scenario.hpp"
 
 namespace ambid::test_support {
-namespace {
+namespace amb1dof_records {
 
 Eigen::MatrixXd diagonal(std::initializer_list<double> values) {
   Eigen::VectorXd d(Eigen::Index(values.size()));
@@ -119,7 +119,8 @@ class SteppedAmb1dofPlant final : public sim::Plant {
   mutable Eigen::Index advanced_ = 0;
 };
 
-}  // namespace
+}  // namespace amb1dof_records
+using namespace amb1dof_records;
 
 sim::ObserverControllerOptions other_observer_options() {
   sim::ObserverControllerOptions o;
