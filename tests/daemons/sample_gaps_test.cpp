@@ -76,7 +76,6 @@ TEST(SampleGaps, MalformedBatchesAreIgnored) {
   EXPECT_FALSE(gaps.check(batch(1, 0.05)));  // the state is where the last good batch left it
 }
 
-<<<<<<< HEAD
 // A restarted plant (its clock back near 0) whose first batches this consumer missed: the gap
 // is those batches on the new clock (measured in the soak before: "missed 0 samples (plant
 // time 86.25 to 29.8 s, 71 batches)", a negative length).
@@ -92,8 +91,5 @@ TEST(SampleGaps, BatchesMissedAfterAPlantRestartAreAGapOnTheNewClock) {
   EXPECT_NEAR(gap->to, 0.2, 1e-12);
 }
 
-}  // namespace
-=======
 }  // namespace sample_gaps_test
->>>>>>> test-unity
 }  // namespace ambid::daemons

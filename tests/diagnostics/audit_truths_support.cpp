@@ -89,8 +89,8 @@ Experiment simulate_truth(const TruthOptions& o) {
   s.amplitude = 1.0;
   s.duration = o.duration;
   s.seed = o.seed;
-  s.position_noise = o.coloured_noise ? 0.0 : kPositionNoise;
-  s.current_noise = kCurrentNoise;
+  s.position_noise = o.coloured_noise ? 0.0 : audit_truths_support::kPositionNoise;
+  s.current_noise = audit_truths_support::kCurrentNoise;
   s.force_noise = kForceNoise;
   sim::Scenario scenario = sim::build_scenario(s);
   scenario.options.substeps = kSubsteps;
@@ -99,9 +99,10 @@ Experiment simulate_truth(const TruthOptions& o) {
   for (const auto& [name, value] : o.parameters) p.set(name, value);
   const OutOfCatalogueBearing truth(p, o);
   // Held per sample, w_n of variance s^2 gives n a variance of about s^2 dt / (2 lag).
-  const double drive = kPositionNoise * std::sqrt(2.0 * kNoiseLag / s.sample_time);
+  const double drive = audit_truths_support::kPositionNoise * std::sqrt(2.0 * kNoiseLag / s.sample_time);
   scenario.options.process_noise_std = Eigen::Vector2d(kForceNoise, o.coloured_noise ? drive : 0.0);
-  scenario.options.measurement_noise_std = Eigen::Vector3d(s.position_noise, kCurrentNoise, kCurrentNoise);
+  scenario.options.measurement_noise_std =
+      Eigen::Vector3d(s.position_noise, audit_truths_support::kCurrentNoise, audit_truths_support::kCurrentNoise);
   return sim::run_closed_loop(truth, scenario.header, scenario.options);
 }
 
@@ -111,8 +112,8 @@ Experiment independent_clean(const std::string& controller, std::uint64_t seed, 
   o.amplitude = 1.0;
   o.duration = duration;
   o.settle = 0.1;
-  o.position_noise = kPositionNoise;
-  o.current_noise = kCurrentNoise;
+  o.position_noise = audit_truths_support::kPositionNoise;
+  o.current_noise = audit_truths_support::kCurrentNoise;
   o.seed = seed;
   return test_support::simulate_amb1dof_record(o).experiment;
 }
