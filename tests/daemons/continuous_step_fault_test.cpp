@@ -58,7 +58,22 @@ double physical(const bus::IdentifiedModel& m, const std::string& name) {
 // windows in the 2 s before the fault) and the truth after it.
 struct Published {
   std::vector<double> time, r1;
+  std::uint64_t seq = 0;
 };
+
+// Feeds `e` from sample `from` to the estimator in daemon windows, its clock moved by `shift`,
+// and keeps each published R1.
+void publish_windows(ContinuousEstimator& estimator, const Experiment& e, Eigen::Index from, double shift,
+                     Published& p) {
+  const auto per_window = Eigen::Index(std::lround(kWindow / e.sample_time));
+  for (Eigen::Index begin = from; begin + per_window <= e.samples(); begin += per_window) {
+    Experiment w = ident::experiment_segment(e, begin, begin + per_window);
+    w.t.array() += shift;
+    const bus::IdentifiedModel m = estimator.identify(w, "p", p.seq++);
+    p.time.push_back(m.time);
+    p.r1.push_back(physical(m, "R1"));
+  }
+}
 
 void expect_tracks(const Published& p, double fault, double truth, const std::string& what) {
   double baseline = 0.0;
@@ -90,16 +105,9 @@ TEST_P(ContinuousStepFault, R1FollowsAStepInTheMiddleOfARecord) {
   o.step_time = 4.25;  // in the middle of a window
   const test_support::Amb1dofRecord record = test_support::simulate_amb1dof_record(o);
   const Experiment& e = record.experiment;
-  const auto per_window = Eigen::Index(std::lround(kWindow / e.sample_time));
   ContinuousEstimator estimator;
   Published p;
-  std::uint64_t seq = 0;
-  for (Eigen::Index begin = record.settled; begin + per_window <= e.samples(); begin += per_window) {
-    const bus::IdentifiedModel m =
-        estimator.identify(ident::experiment_segment(e, begin, begin + per_window), "p", seq++);
-    p.time.push_back(m.time);
-    p.r1.push_back(physical(m, "R1"));
-  }
+  publish_windows(estimator, e, record.settled, 0.0, p);
   expect_tracks(p, e.t(record.stepped), record.true_parameters_after_step.get("R1"), GetParam());
 }
 
@@ -111,26 +119,13 @@ TEST_P(ContinuousStepFault, R1FollowsTheStacksSwapToAHotCoil) {
   const test_support::Amb1dofRecord after = test_support::simulate_amb1dof_record(o);
   const Experiment& a = before.experiment;
   const Experiment& b = after.experiment;
-  const auto per_window = Eigen::Index(std::lround(kWindow / a.sample_time));
   ContinuousEstimator estimator;
   Published p;
-  std::uint64_t seq = 0;
-  for (Eigen::Index begin = before.settled; begin + per_window <= a.samples(); begin += per_window) {
-    const bus::IdentifiedModel m =
-        estimator.identify(ident::experiment_segment(a, begin, begin + per_window), "p", seq++);
-    p.time.push_back(m.time);
-    p.r1.push_back(physical(m, "R1"));
-  }
+  publish_windows(estimator, a, before.settled, 0.0, p);
   // The swap: the faulty record continues the clock; the daemon drops its first 0.25 s (settle).
   const double swap = a.t(a.samples() - 1) + a.sample_time;
   const auto settle = Eigen::Index(std::lround(0.25 / b.sample_time));
-  for (Eigen::Index begin = settle; begin + per_window <= b.samples(); begin += per_window) {
-    Experiment w = ident::experiment_segment(b, begin, begin + per_window);
-    w.t.array() += swap - b.t(0);
-    const bus::IdentifiedModel m = estimator.identify(w, "p", seq++);
-    p.time.push_back(m.time);
-    p.r1.push_back(physical(m, "R1"));
-  }
+  publish_windows(estimator, b, settle, swap - b.t(0), p);
   expect_tracks(p, swap, after.true_parameters.get("R1"), GetParam() + "_swap");
 }
 
