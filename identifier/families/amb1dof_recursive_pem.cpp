@@ -109,15 +109,17 @@ void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   w_.setZero();
   drift_.setZero();
   quiet_ = static_cast<int>(options_.jump_samples) * 4;
-  // Where the loop settles after a gap is not known (a fault moves the bias currents): the
-  // offsets' variance back up to the start's, so that w, not v, takes the new operating point.
-  const Eigen::VectorXd variances = ud_.variances();
-  for (int k = 9; k < kThetaGain; ++k) {
-    if (!(variances(k) < 1.0)) continue;
-    Theta along = Theta::Unit(k);
-    ud_.add(1.0 - variances(k), along);
-  }
+  // The first start has no predictor to warm up: its theta is the prior, forgotten fast anyway.
+  // The length is taken at the next sample, from the predictor a projection has settled on.
+  if (started_) warmup_ = -1;
   started_ = true;
+}
+
+int Amb1dofRecursivePem::warmup_samples() const {
+  // The predictor's state error from the restart decays like radius^n.
+  const double memory = options_.forgetting < 1.0 ? 1.0 / (1.0 - options_.forgetting) : options_.startup_samples;
+  const double n = std::log(options_.restart_decay) / std::log(predictor_radius_);
+  return static_cast<int>(std::ceil(std::clamp(std::isfinite(n) ? n : memory, 1.0, memory)));
 }
 
 void Amb1dofRecursivePem::relax(double carry) {
@@ -168,7 +170,8 @@ void Amb1dofRecursivePem::relinearise() {
     gain_ = pem::gain_of(batch);
     Eigen::Matrix4d F = reference_.Ad;
     for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
-    const bool stable = F.allFinite() && linalg::spectral_radius(F) < options_.max_predictor_radius;
+    predictor_radius_ = F.allFinite() ? linalg::spectral_radius(F) : 1.0;
+    const bool stable = F.allFinite() && predictor_radius_ < options_.max_predictor_radius;
     if (stable || attempt == 1) break;
     // Ljung's projection: back to the last stable predictor, its state from the measurement.
     ++projections_;
@@ -191,6 +194,12 @@ void Amb1dofRecursivePem::set_model() {
 void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d& u) {
   if (!started_) restart(y);
   const Eigen::Vector3d e(y(0) - x_(0), y(1) - x_(2), y(2) - x_(3));
+  if (warmup_ < 0) warmup_ = warmup_samples();
+  if (warmup_ > 0) {  // theta held: the state and sensitivities forget the restart first
+    --warmup_;
+    propagate(e, u);
+    return;
+  }
   const double lambda = forgetting_;
   const double approach = 1.0 / options_.startup_samples;
   forgetting_ += approach * (options_.forgetting - forgetting_);
@@ -215,8 +224,20 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   }
   theta_ += scale_.cwiseProduct(step);
   set_model();
+  propagate(e, u);
+  ++samples_;
+  if (!x_.allFinite() || !w_.allFinite() || !theta_.allFinite()) {
+    ++projections_;
+    theta_ = checked_;
+    relinearise();
+    restart(y);
+    return;
+  }
+  if (++since_relinearise_ >= options_.relinearise_samples) relinearise();
+}
 
-  // Sensitivities and state of the next sample with the updated theta.
+void Amb1dofRecursivePem::propagate(const Eigen::Vector3d& e, const Eigen::Vector2d& u) {
+  // Sensitivities and state of the next sample with the current theta.
   Eigen::Matrix<double, 7, 1> z;
   z << x_, u, 1.0;
   Eigen::Matrix4d F = hold_.leftCols<4>();
@@ -231,15 +252,6 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   for (int i = 0; i < 4; ++i) next.block<1, 3>(i, kThetaGain + 3 * i) += e.transpose();
   w_ = next;
   x_ = hold_ * z + gain_ * e;
-  ++samples_;
-  if (!x_.allFinite() || !w_.allFinite() || !theta_.allFinite()) {
-    ++projections_;
-    theta_ = checked_;
-    relinearise();
-    restart(y);
-    return;
-  }
-  if (++since_relinearise_ >= options_.relinearise_samples) relinearise();
 }
 
 }  // namespace ambid::ident
