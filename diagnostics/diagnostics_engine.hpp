@@ -55,6 +55,10 @@ class DiagnosticsEngine {
   // Throws Error for an invalid window, an unmonitored parameter, a time that does not
   // follow the previous estimate of its parameter, or a store failure; then nothing of the
   // call is kept, neither in the engine nor in the store.
+  //
+  // An estimate that has not converged (its sigma beyond MonitorConfig::unconverged_sigma_ratio
+  // times the baseline's) is stored with the history but not given to the detectors; the call's
+  // notes() say so when a parameter starts or stops being judged.
   std::vector<Alert> process(std::span<const EstimateWindow> windows);
   std::vector<Alert> process(const EstimateWindow& window) { return process(std::span(&window, 1)); }
 
@@ -72,6 +76,11 @@ class DiagnosticsEngine {
   // starts again from it.
   void set_baseline(const std::string& plant_id, const std::string& parameter, const Baseline& baseline, double time);
 
+  // Of the last process() call: "plant P: R1 not judged: sigma 0.52 is 2.3x the baseline's 0.22
+  // (the estimate has not converged)", "plant P: R1 judged again (sigma 0.25)"; empty when no
+  // parameter changed between judged and not.
+  const std::vector<std::string>& notes() const { return notes_; }
+
   // The current level of a parameter; Error when the engine has not seen it.
   Level level(const std::string& plant_id, const std::string& parameter) const;
 
@@ -87,11 +96,14 @@ class DiagnosticsEngine {
     std::string fault;
     std::optional<int> channel;
     Level episode = Level::ok;  // highest level since last OK
+    bool unconverged = false;   // its last estimate was not judged (MonitorConfig::unconverged_sigma_ratio)
   };
   using Key = std::pair<std::string, std::string>;  // plant id, parameter
   using SeriesMap = std::map<Key, Series>;
 
   Series& series(SeriesMap& map, const std::string& plant_id, const std::string& parameter) const;
+  std::string convergence_note(const std::string& plant_id, const ParameterEstimate& e, const Series& s,
+                               bool converged) const;
   void mark_stale(SeriesMap& map, const std::optional<std::string>& plant_id, double now,
                   std::vector<Alert>& alerts) const;
   void evaluate(SeriesMap& map, const std::string& plant_id, double time, std::vector<Alert>& alerts) const;
@@ -106,6 +118,7 @@ class DiagnosticsEngine {
   EngineConfig config_;
   SeriesMap series_;
   std::map<std::string, SeenWindows> seen_;  // by plant id
+  std::vector<std::string> notes_;           // of the last process() call
 };
 
 }  // namespace ambid::diag

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <utility>
 
 #include "core/error.hpp"
@@ -41,6 +42,20 @@ std::size_t estimates_hash(const EstimateWindow& w) {
 
 }  // namespace
 
+std::string DiagnosticsEngine::convergence_note(const std::string& plant_id, const ParameterEstimate& e,
+                                                const Series& s, bool converged) const {
+  const double reference = s.monitor.baseline() ? s.monitor.baseline()->reported_sigma : 0.0;
+  char text[160];
+  if (converged)
+    std::snprintf(text, sizeof text, "plant %s: %s judged again (sigma %.3g, the baseline's %.3g)", plant_id.c_str(),
+                  e.parameter.c_str(), e.sigma, reference);
+  else
+    std::snprintf(text, sizeof text,
+                  "plant %s: %s not judged: sigma %.3g is %.2gx the baseline's %.3g (the estimate has not converged)",
+                  plant_id.c_str(), e.parameter.c_str(), e.sigma, e.sigma / reference, reference);
+  return text;
+}
+
 void EngineConfig::validate() const {
   monitor.validate();
   policy.validate();
@@ -69,6 +84,7 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
   }
   SeriesMap next = series_;
   Batch batch;
+  std::vector<std::string> notes;
   batch.windows.assign(windows.begin(), windows.end());
   std::vector<std::pair<std::string, std::size_t>> new_hashes;  // remembered once stored
   for (const EstimateWindow& w : windows) {
@@ -80,7 +96,10 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
     if (!repeated) new_hashes.emplace_back(w.plant_id, hash);
     for (const ParameterEstimate& e : w.estimates) {
       Series& s = series(next, w.plant_id, e.parameter);
-      if (!repeated && s.monitor.update(w.time, e.value, e.sigma))
+      const bool converged = s.monitor.converged(e.sigma);
+      if (!repeated && converged != !s.unconverged) notes.push_back(convergence_note(w.plant_id, e, s, converged));
+      if (!repeated) s.unconverged = !converged;
+      if (!repeated && converged && s.monitor.update(w.time, e.value, e.sigma))
         batch.baselines.push_back({w.plant_id, e.parameter, *s.monitor.baseline(), w.time});
       s.last_time = w.time;
       s.last_value = e.value;
@@ -90,6 +109,7 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
   }
   store_.write(batch);
   series_ = std::move(next);
+  notes_ = std::move(notes);
   for (const auto& [plant_id, hash] : new_hashes) {
     SeenWindows& seen = seen_[plant_id];
     seen.order.push_back(hash);

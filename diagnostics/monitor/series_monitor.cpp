@@ -14,6 +14,9 @@ void MonitorConfig::validate() const {
   if (learning_windows < kMinLearningWindows)
     throw Error("monitor: learning_windows must be at least " + std::to_string(kMinLearningWindows) + ", got " +
                 std::to_string(learning_windows));
+  if (!(unconverged_sigma_ratio > 1.0) || !std::isfinite(unconverged_sigma_ratio))
+    throw Error("monitor: unconverged_sigma_ratio must be finite and > 1, got " +
+                std::to_string(unconverged_sigma_ratio));
   cusum.validate();
   slope.validate();
 }
@@ -55,6 +58,11 @@ bool SeriesMonitor::update(double time, double value, double sigma) {
   recent_.push_back({value, sigma_eff, baseline_->z(value, sigma)});
   if (recent_.size() > config_.slope.window) recent_.pop_front();
   return false;
+}
+
+bool SeriesMonitor::converged(double sigma) const {
+  return !baseline_ || !(sigma > config_.unconverged_sigma_ratio * baseline_->reported_sigma) ||
+         baseline_->reported_sigma == 0.0;
 }
 
 SeriesStatus SeriesMonitor::status() const {

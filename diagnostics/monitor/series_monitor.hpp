@@ -15,9 +15,15 @@ namespace ambid::diag {
 
 struct MonitorConfig {
   std::size_t learning_windows = 50;
+  // An estimate whose sigma exceeds this many times the baseline's reported sigma (the median
+  // sigma of the windows it was learned from) has not converged: it carries under 1 / ratio^2 of
+  // the information of the baseline's windows (a recursive estimator just after a restart or a
+  // jump, the first window after a source swap) and is not compared with the baseline.
+  double unconverged_sigma_ratio = 2.0;
   CusumConfig cusum;
   SlopeConfig slope;
-  void validate() const;  // learning_windows >= kMinLearningWindows, and the detectors'
+  // learning_windows >= kMinLearningWindows, unconverged_sigma_ratio > 1, and the detectors'
+  void validate() const;
 };
 
 enum class Change { none, step, drift };
@@ -43,6 +49,10 @@ class SeriesMonitor {
   // Times must increase strictly; sigma > 0 (Error otherwise). Returns true when this window
   // completed the learning of the baseline.
   bool update(double time, double value, double sigma);
+  // False for an estimate that has not converged (MonitorConfig::unconverged_sigma_ratio): give
+  // it to update() only when true. Always true before the baseline and for a baseline learned
+  // without sigmas.
+  bool converged(double sigma) const;
   const std::optional<Baseline>& baseline() const { return baseline_; }
   SeriesStatus status() const;
 

@@ -41,10 +41,12 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(
       j, "diagnostics config",
       {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "warn_fraction", "stale_timeout",
-       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period"});
+       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period", "unconverged_sigma_ratio"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
+  c.engine.monitor.unconverged_sigma_ratio =
+      config_value(j, "unconverged_sigma_ratio", c.engine.monitor.unconverged_sigma_ratio);
   c.engine.policy.persist_windows = std::size_t(config_value(j, "persist_windows", 100));
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
   c.engine.policy.warn_fraction = config_value(j, "warn_fraction", c.engine.policy.warn_fraction);
@@ -253,6 +255,7 @@ int run_diagnostics_daemon(const DaemonOptions& options) {
         diag::EstimateWindow window = convert::estimate_window(m, p.source);
         window.time = at->time;
         publish(p.engine->process(window));
+        for (const std::string& note : p.engine->notes()) runtime.log(note);
         retain(p, m.plant_id, at->time);
         p.last_model = std::chrono::steady_clock::now();
         p.stale = false;
