@@ -126,6 +126,8 @@ MaglevExtended::Continuous MaglevExtended::continuous_derivative(const Continuou
   Continuous d(continuous_states_);
   d[0] = rate;
   d[1] = p_.g + (force - std::copysign(p_.Km * std::pow(std::abs(current), p_.n_i), current) / gap_power) / p_.m;
+  // On a stop, at rest, the stop's reaction cancels a force into it.
+  if ((gap <= p_.x_min && rate <= 0.0 && d[1] < 0.0) || (gap >= p_.x_max && rate >= 0.0 && d[1] > 0.0)) d[1] = 0.0;
   d[2] = (p_.kw * command - p_.R * current - emf) / p_.L;
   if (harmonic_state_ >= 0) {
     d[harmonic_state_] = -harmonic_omega_ * s[harmonic_state_ + 1];
@@ -178,11 +180,14 @@ void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const
     const Continuous k3 = continuous_derivative(Continuous(s + 0.5 * h * k2), command, Fz);
     const Continuous k4 = continuous_derivative(Continuous(s + h * k3), command, Fz);
     s += (h / 6.0) * (k1 + 2.0 * (k2 + k3) + k4);
-    if (!(s[0] > p_.x_min && s[0] < p_.x_max)) {
-      std::ostringstream msg;
-      msg << "maglev1coil_voltage: the body touched the " << (s[0] <= p_.x_min ? "top stop" : "ground")
-          << " (x = " << s[0] * 1e3 << " mm)";
-      throw Error(msg.str());
+    if (!s.allFinite()) fail_extended("the state became non-finite, gap", s[0]);
+    // Inelastic stops: the body rests on a stop until the forces pull it off.
+    if (s[0] <= p_.x_min) {
+      s[0] = p_.x_min;
+      s[1] = std::max(s[1], 0.0);
+    } else if (s[0] >= p_.x_max) {
+      s[0] = p_.x_max;
+      s[1] = std::min(s[1], 0.0);
     }
   }
   x.head(continuous_states_) = s;

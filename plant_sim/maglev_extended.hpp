@@ -50,9 +50,12 @@ class MaglevExtended : public Plant {
                              const Eigen::VectorXd& w) const override;
   Eigen::VectorXd output(const Eigen::VectorXd& x) const override;
   // One shift of the delay line, then RK4 with at least `substeps` steps and steps of at most
-  // 0.2 L/R (the coil's pole lies within a sample at the rig's rates). Error when the body
-  // reaches a stop (x_min, x_max) or the sample time differs from the constructor's while a
-  // sensor delay is active.
+  // 0.2 L/R (the coil's pole lies within a sample at the rig's rates). A body that reaches a
+  // stop (x_min, x_max) rests on it, its speed into the stop lost, until the forces pull it off
+  // (the rig's magnet against the top or on the ground): a candidate whose replay goes there is a
+  // bad fit, not a failed one (at 4 ms the nominal replay of a force_law record touched the top
+  // stop in the rig's ringing after a step the record itself survived). Error when the sample
+  // time differs from the constructor's while a sensor delay is active.
   void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
                int substeps) const override;
 

@@ -275,8 +275,11 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
       r.z_threshold =
           scored.empty() ? acceptance_threshold(options.false_acceptance, 1) : scored.front().finding.z_threshold;
     // The strongest evidence against noise: the significant finding of best score (z less the
-    // complexity penalty), put first.
-    auto pick = std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+    // complexity penalty) among those whose residual passes the check, else among all; put first.
+    auto pick = std::find_if(scored.begin(), scored.end(),
+                             [](const Scored& s) { return s.finding.significant && s.finding.residual.consistent; });
+    if (pick == scored.end())
+      pick = std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
     if (pick != scored.end()) {
       std::rotate(scored.begin(), pick, pick + 1);
       pick = scored.begin();
