@@ -36,7 +36,7 @@ struct LevelStructuredFit {
 
 struct LevelStructuredAnalysis {
   std::string level_signal;
-  std::vector<LevelStructuredFit> levels;  // in the order of their first visit
+  std::vector<LevelStructuredFit> levels;         // in the order of their first visit
   std::optional<std::size_t> at_operating_point;  // the level at the record's operating point
   double merge = 0.0;                             // the distance that decides it (signal units)
 };

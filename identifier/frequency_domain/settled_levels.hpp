@@ -13,10 +13,10 @@
 namespace ambid::ident {
 
 struct SettledLevelOptions {
-  double window = 0.1;   // s: the means compared on either side of a sample (at least 2 samples)
-  double step = 0.0;     // smallest step, in the signal's units; 0: 2 % of the median |signal|
-  double settle = 0.3;   // s dropped after each step and at the record's start (the loop's transient)
-  double merge = 0.0;    // visits with means closer than this are one level; 0: step / 2
+  double window = 0.1;             // s: the means compared on either side of a sample (at least 2 samples)
+  double step = 0.0;               // smallest step, in the signal's units; 0: 2 % of the median |signal|
+  double settle = 0.3;             // s dropped after each step and at the record's start (the loop's transient)
+  double merge = 0.0;              // visits with means closer than this are one level; 0: step / 2
   Eigen::Index min_samples = 128;  // settled samples (over all visits) a level needs to be kept
 };
 
