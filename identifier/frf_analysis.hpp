@@ -13,7 +13,8 @@
 // - a continuous rational fit of every pair below fit_f_max (order by validation misfit, ZOH
 //   compensated, noise weighted when variances exist): poles, zeros, gain;
 // - where the plant family has a linear structure, that structure fitted to the plant FRF and
-//   what it derives (the maglev's unstable pole), with one-sigma uncertainties.
+//   what it derives (the maglev's unstable pole), with one-sigma uncertainties; level by level
+//   on records of reference steps where the family's linearisation changes with the level.
 // Steps that cannot run say why in `notes` instead of failing the whole analysis.
 #include <optional>
 #include <string>
@@ -22,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "core/experiment.hpp"
+#include "identifier/frequency_domain/frf_levels.hpp"
 #include "identifier/frequency_domain/frf_open_loop.hpp"
 #include "identifier/frequency_domain/frf_periodicity.hpp"
 #include "identifier/frequency_domain/frf_structured.hpp"
@@ -86,7 +88,11 @@ struct FrfReport {
   std::vector<FittedPair> fits;
   // The family's physical structure fitted to the plant FRF (plant_families.hpp
   // `frf_structure`; the maglev's unstable pole with its sigma); empty for a family without.
+  // For a family whose structure changes with the level (FrfStructure::level_signal): the
+  // structure per settled level (frf_levels.hpp), and `structured` is the level at the
+  // record's operating point (empty, with a note, when no level lies there).
   std::optional<StructuredFrfFit> structured;
+  std::optional<LevelStructuredAnalysis> levels;
   std::optional<PeriodicExcitation> periodic;  // method "periodic": what was detected and used
   // Samples where a controller clamp acted (controller.output_limits, state_limits): not
   // exogenous, so no block (periodic: period, and the one after it; Welch: segment) holding

@@ -54,7 +54,7 @@ ContinuousSystem maglev_structure_model(const Eigen::VectorXd& theta) {
 
 const FrfStructure& maglev_frf_structure() {
   static const FrfStructure s{
-      {"a", "b", "R_over_L", "kw_over_L", "emf"}, {"unstable_pole"}, start, maglev_structure_model, unstable_pole};
+      {"a", "b", "R_over_L", "kw_over_L", "emf"}, {"unstable_pole"}, start, maglev_structure_model, unstable_pole, "x"};
   return s;
 }
 

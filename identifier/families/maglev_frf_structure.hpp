@@ -6,7 +6,8 @@
 //   A = [0 1 0; a 0 -b; 0 emf -R/L],  B = [0; 0; kw/L],  C = [1 0 0; 0 0 1],  D = 0,
 // with a = n_x g / x0 and b = n_i g / i0 at the measured point (gravity balance). Both pairs
 // x/u and i/u together determine all five. Derived: the unstable pole, the positive real
-// eigenvalue of A (sqrt(a) without the back-EMF's coupling).
+// eigenvalue of A (sqrt(a) without the back-EMF's coupling). a and b change with the gap: the
+// structure is fitted per reference level, each at its own means (level signal x).
 #include <Eigen/Core>
 
 #include "core/state_space.hpp"

@@ -37,6 +37,18 @@ double emf_factor(double current, double n_i, double i0) {
   return std::pow(std::max(std::abs(current), 0.01 * i0), n_i - 1.0);
 }
 
+// The positive eigenvalue of the linearisation at the operating point (x0, i0), the force and
+// back-EMF constants closed by gravity balance there (maglev_frf_structure.hpp:
+// A = [0 1 0; a 0 -b; 0 emf -R/L]), of q = [rho, n_i, n_x, R, L, Ke]. The back-EMF's coupling
+// lowers it below sqrt(a): by 1 % at 14 mm on the rig.
+double linearised_unstable_pole(const Eigen::VectorXd& q, double g, double x0, double i0) {
+  const double rho = q(0), n_i = q(1), n_x = q(2), R = q(3), L = q(4), Ke = q(5);
+  const double emf = n_i * Ke / rho * std::pow(i0, n_i - 1.0) / (std::pow(x0, n_x) * L);
+  Eigen::Matrix3d A;
+  A << 0.0, 1.0, 0.0, n_x * g / x0, 0.0, -n_i * g / i0, 0.0, emf, -R / L;
+  return linalg::eigenvalues(A).real().maxCoeff();
+}
+
 // The current estimates every step works with (nominal values before the first pass).
 struct Estimates {
   double R, L, Ke, kw, n_i, n_x, rho, g;
@@ -347,7 +359,24 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   // At the operating point with the force constant closed by gravity balance (rho = 1 there).
   put("stiffness", n_x * g / in.x0, std::pow(g / in.x0, 2) * body_cov(2, 2));
   put("current_gain", n_i * g / in.i0, std::pow(g / in.i0, 2) * body_cov(1, 1));
-  put("unstable_pole", std::sqrt(n_x * g / in.x0), g / in.x0 / (4 * n_x * g / in.x0) * body_cov(2, 2) * g / in.x0);
+  // Its sigma through the body's and the coil's covariances (central differences of 1e-4
+  // relative: an eigenvalue's rounding at 1e-6 moved the sigma by 3e-9 between a record and its
+  // MAT import; the two steps taken as independent).
+  Eigen::VectorXd q(6);
+  q << rho, n_i, n_x, coil_values(0), coil_values(1), coil_values(2);
+  Eigen::MatrixXd q_cov = Eigen::MatrixXd::Zero(6, 6);
+  q_cov.topLeftCorner(3, 3) = body_cov;
+  q_cov.bottomRightCorner(3, 3) = coil_cov;
+  Eigen::RowVectorXd dpole(6);
+  for (Index c = 0; c < 6; ++c) {
+    const double h = 1e-4 * std::max(std::abs(q(c)), 1e-12);
+    Eigen::VectorXd up = q, down = q;
+    up(c) += h;
+    down(c) -= h;
+    dpole(c) =
+        (linearised_unstable_pole(up, g, in.x0, in.i0) - linearised_unstable_pole(down, g, in.x0, in.i0)) / (2 * h);
+  }
+  put("unstable_pole", linearised_unstable_pole(q, g, in.x0, in.i0), (dpole * q_cov * dpole.transpose())(0, 0));
   out.coil_residual_rms = coil.residual_rms;
   out.body_residual_rms = std::sqrt(r.squaredNorm() / double(r.size()));
   return out;

@@ -7,6 +7,7 @@
 
 #include "core/controller_replay.hpp"
 #include "core/error.hpp"
+#include "identifier/frequency_domain/frf_levels.hpp"
 #include "identifier/frequency_domain/frf_plan.hpp"
 #include "identifier/frequency_domain/rational_fit_order.hpp"
 #include "identifier/frf_welch.hpp"
@@ -35,12 +36,28 @@ void fill_pairs(FrfReport& report, const Eigen::MatrixXd* coherence, double conf
   }
 }
 
-// The family's structure on the plant FRF; a failure is a note.
-void fit_structure(FrfReport& report, const Experiment& e) {
+// The family's structure on the plant FRF, or level by level where its linearisation changes
+// with the level (frf_levels.hpp: `structured` is then the level at the operating point); a
+// failure is a note.
+void fit_structure(FrfReport& report, const Experiment& e, const std::vector<bool>& clamped) {
   const IdentificationFamily* family = find_identification_family(e.plant.model);
   if (!family || !family->frf_structure) return;
+  const FrfStructure& structure = family->frf_structure();
   try {
-    report.structured = fit_structured_frf(e, report.plant, family->frf_structure());
+    if (structure.level_signal.empty()) {
+      report.structured = fit_structured_frf(e, report.plant, structure);
+      return;
+    }
+    report.levels = fit_structure_per_level(e, structure, clamped);
+    if (report.levels->at_operating_point)
+      report.structured = report.levels->levels[*report.levels->at_operating_point].fit;
+    else
+      report.notes.push_back("structured fit of " + e.plant.model + ": no settled level at the operating point " +
+                             structure.level_signal + " = " +
+                             (e.operating_point.contains(structure.level_signal)
+                                  ? std::to_string(e.operating_point.at(structure.level_signal))
+                                  : std::string("(not given)")) +
+                             "; see the levels");
   } catch (const Error& err) {
     report.notes.push_back(std::string("structured fit of ") + e.plant.model + ": " + err.what());
   }
@@ -187,7 +204,7 @@ FrfReport analyse_frf(const Experiment& e, const FrfAnalysisOptions& o) {
     report.notes.push_back("no controller recorded: no sensitivity and no controller check");
   }
   if (o.fit) fit_pairs(report, e, o);
-  if (o.fit) fit_structure(report, e);
+  if (o.fit) fit_structure(report, e, left_out);
   return report;
 }
 

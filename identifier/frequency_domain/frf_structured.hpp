@@ -25,6 +25,9 @@ struct FrfStructure {
   ContinuousSystem (*model)(const Eigen::VectorXd& theta) = nullptr;
   // The derived quantities of theta, in derived_names order.
   Eigen::VectorXd (*derived)(const Eigen::VectorXd& theta) = nullptr;
+  // The output whose level sets the operating point (the maglev's gap "x"): records of
+  // reference steps are fitted level by level (frf_levels.hpp). Empty: one fit of the record.
+  std::string level_signal;
 };
 
 struct StructuredFrfFit {

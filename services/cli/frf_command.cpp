@@ -87,11 +87,23 @@ void print_summary(const ident::FrfReport& r, const std::string& path, const std
     if (!beyond.empty()) std::cout << " (beyond the fitted band, not resolved:" << beyond << ")";
     std::cout << "\n";
   }
+  if (r.levels)
+    for (const ident::LevelStructuredFit& l : r.levels->levels) {
+      std::cout << "  structure at " << r.levels->level_signal << " = "
+                << format_number(l.operating_point.at(r.levels->level_signal)) << " (" << l.samples
+                << " settled samples):";
+      if (!l.fit) std::cout << " no fit: " << l.note;
+      for (std::size_t k = 0; l.fit && k < l.fit->derived_names.size(); ++k)
+        std::cout << " " << l.fit->derived_names[k] << " " << format_number(l.fit->derived_value(Eigen::Index(k)))
+                  << " +- " << format_number(l.fit->derived_sigma(Eigen::Index(k)));
+      std::cout << "\n";
+    }
   if (r.structured)
     for (std::size_t k = 0; k < r.structured->derived_names.size(); ++k)
       std::cout << "  structure: " << r.structured->derived_names[k] << " "
                 << format_number(r.structured->derived_value(Eigen::Index(k))) << " +- "
-                << format_number(r.structured->derived_sigma(Eigen::Index(k))) << " (one sigma)\n";
+                << format_number(r.structured->derived_sigma(Eigen::Index(k))) << " (one sigma"
+                << (r.levels ? ", at the operating point's level" : "") << ")\n";
   for (const std::string& note : r.notes) std::cout << "  note: " << note << "\n";
   std::cout << "  wrote " << out << "/frf.json and " << plots << " plots\n";
 }

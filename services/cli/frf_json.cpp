@@ -32,6 +32,32 @@ json plant_json(const ident::PlantPair& pair, double confidence) {
   return p;
 }
 
+// parameters, derived (each value and sigma), misfit, converged.
+json structure_json(const ident::StructuredFrfFit& f) {
+  json parameters = json::object(), derived = json::object();
+  for (std::size_t k = 0; k < f.parameter_names.size(); ++k)
+    parameters[f.parameter_names[k]] = {{"value", f.value(Eigen::Index(k))}, {"sigma", f.sigma(Eigen::Index(k))}};
+  for (std::size_t k = 0; k < f.derived_names.size(); ++k)
+    derived[f.derived_names[k]] = {{"value", f.derived_value(Eigen::Index(k))},
+                                   {"sigma", f.derived_sigma(Eigen::Index(k))}};
+  return {{"parameters", parameters}, {"derived", derived}, {"misfit", f.misfit}, {"converged", f.converged}};
+}
+
+// One settled level: its means, spans [first sample, samples], Welch segments, and its fit (or
+// why there is none).
+json level_json(const ident::LevelStructuredFit& l) {
+  json spans = json::array();
+  for (const ident::SettledSpan& s : l.spans) spans.push_back({s.first, s.samples});
+  json out = l.fit ? structure_json(*l.fit) : json::object();
+  out["operating_point"] = l.operating_point;
+  out["spans"] = spans;
+  out["samples"] = l.samples;
+  out["segment_samples"] = l.segment_samples;
+  out["segments"] = l.segments;
+  if (!l.note.empty()) out["note"] = l.note;
+  return out;
+}
+
 json model_json(const ident::FittedPair& fitted, double top_hz) {
   const ident::RationalModel& m = fitted.fit.model;
   const Eigen::VectorXcd poles = m.poles();
@@ -121,19 +147,19 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
   for (const ident::FittedPair& fitted : report.fits)
     models[fitted.name] = model_json(fitted, fit_band_top_hz(experiment, options));
   out["model"] = models;
-  if (report.structured) {  // the plant family's structure (identifier/frf_analysis.hpp)
-    const ident::StructuredFrfFit& f = *report.structured;
-    json parameters = json::object(), derived = json::object();
-    for (std::size_t k = 0; k < f.parameter_names.size(); ++k)
-      parameters[f.parameter_names[k]] = {{"value", f.value(Eigen::Index(k))}, {"sigma", f.sigma(Eigen::Index(k))}};
-    for (std::size_t k = 0; k < f.derived_names.size(); ++k)
-      derived[f.derived_names[k]] = {{"value", f.derived_value(Eigen::Index(k))},
-                                     {"sigma", f.derived_sigma(Eigen::Index(k))}};
-    out["structure"] = {{"family", experiment.plant.model},
-                        {"parameters", parameters},
-                        {"derived", derived},
-                        {"misfit", f.misfit},
-                        {"converged", f.converged}};
+  if (report.structured || report.levels) {  // the plant family's structure (identifier/frf_analysis.hpp)
+    json structure = report.structured ? structure_json(*report.structured) : json::object();
+    structure["family"] = experiment.plant.model;
+    if (report.levels) {
+      const ident::LevelStructuredAnalysis& a = *report.levels;
+      json levels = json::array();
+      for (const ident::LevelStructuredFit& l : a.levels) levels.push_back(level_json(l));
+      structure["level_signal"] = a.level_signal;
+      structure["levels"] = levels;
+      structure["operating_point"] = experiment.operating_point;
+      if (a.at_operating_point) structure["level_at_operating_point"] = *a.at_operating_point;
+    }
+    out["structure"] = structure;
   }
   out["model_band_hz"] = {report.frequency_hz.size() ? report.frequency_hz(0) : 0.0,
                           fit_band_top_hz(experiment, options)};

@@ -26,11 +26,11 @@ using cli_test::CommandResult;
 using cli_test::fresh_dir;
 using cli_test::run_ambid;
 
-// The positive eigenvalue of the true plant linearised at the record's measured point (x0, i0),
-// the force and back-EMF constants closed by gravity balance there (maglev_identification.hpp).
-double true_unstable_pole(const Experiment& e) {
+// The positive eigenvalue of the true plant (the note's force law with the sidecar's true
+// parameters) linearised analytically at the point (x0, i0), the force and back-EMF constants
+// closed by gravity balance there (maglev_identification.hpp).
+double true_unstable_pole(const Experiment& e, double x0, double i0) {
   const auto& p = e.extra.json().at("simulation").at("true_parameters");
-  const double x0 = e.operating_point.at("x"), i0 = e.operating_point.at("i");
   const double g = p.at("g"), n_i = p.at("n_i"), n_x = p.at("n_x"), L = p.at("L"), R = p.at("R");
   const double rho = p.at("Km").get<double>() * std::pow(i0, n_i) / (p.at("m").get<double>() * g * std::pow(x0, n_x));
   const double emf = n_i * p.at("Ke").get<double>() / rho * std::pow(i0, n_i - 1) / (std::pow(x0, n_x) * L);
@@ -72,35 +72,48 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
   EXPECT_NEAR(physical.at("Km").get<double>() / 1.62e-8, 1.0, 0.01);
 }
 
-// Open (2026-12-03): the structure's unstable pole on this record reads 55.9 +- 0.66 rad/s, 6.6 %
-// above the truth's linearisation at the first level (52.40). Not the clamps and not the
-// logger: with every clamped segment counted it was within 5 %, and the same record unrounded
-// and noise-free reads 56.5 +- 0.53. It is the levels: the Welch FRF averages the plant over
-// 13 to 16 mm, where b = n_i g / i0 changes 2.3x and a 7 %, and one structure fitted to that
-// mix reads a 3184 (truth 2804) and b 496 (570). With the reference held at 14 mm the same run
-// reads 51.8 +- 0.27 (1.1 % low); fitted on the samples within 2 % of the operating gap only
-// (Welch segments of 64, the lines below the pole lost) 39.5 +- 1.5, within 4 % (segments of
-// 256, 4 of them; 7 at 75 % overlap) 49.8 +- 0.27 and 49.2 +- 0.30. What is missing is a
-// structure with the levels in it: each segment's a and b from its own mean gap and current,
-// the model's FRF averaged with the segments' cross-spectra as the estimate averages them.
-TEST(MaglevCli, DISABLED_FrfUnstablePoleOfASimulatedRigRecord) {
+// The structure per settled level (identifier/frequency_domain/frf_levels.hpp). One structure
+// fitted to the whole record's Welch FRF read 55.9 +- 0.66 rad/s, 6.6 % above the truth at the
+// first level (52.40): it averaged the plant over 13 to 16 mm, where b = n_i g / i0 changes
+// 2.3x. Per level, each at its own means, the unstable pole against the truth's linearisation
+// at those means; at the operating point (the first level's means) the level there.
+TEST(MaglevCli, FrfUnstablePolePerLevelOfASimulatedRigRecord) {
   const fs::path dir = fresh_dir("maglev_cli_frf");
   const std::string stem = (dir / "run").string();
   CommandResult r = run_ambid(std::string(kRigRecord) + stem);
   ASSERT_EQ(r.status, 0) << r.output;
   const Experiment e = read_experiment(stem + ".json").experiment;
 
-  // frf: the family's structure on the plant FRF; its unstable pole against the truth's
-  // linearisation at the measured point.
   r = run_ambid("frf " + stem + ".json --out " + (dir / "frf").string());
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("structure: unstable_pole "));
+  EXPECT_THAT(r.output, HasSubstr("structure at x = 0.014 ("));
   std::ifstream frf_in(dir / "frf" / "frf.json");
   const nlohmann::json frf = nlohmann::json::parse(frf_in);
-  const auto& pole = frf.at("structure").at("derived").at("unstable_pole");
-  const double truth = true_unstable_pole(e);
-  EXPECT_NEAR(pole.at("value").get<double>() / truth, 1.0, std::max(0.05, 3 * pole.at("sigma").get<double>() / truth));
-  EXPECT_GT(pole.at("sigma").get<double>(), 0.0);
+  const auto& structure = frf.at("structure");
+  EXPECT_EQ(structure.at("level_signal"), "x");
+  // Six levels; at 13 mm a controller clamp acts in all but one of its Welch segments.
+  const auto& levels = structure.at("levels");
+  ASSERT_EQ(levels.size(), 6u);
+  int fitted = 0;
+  for (const auto& level : levels) {
+    const double x = level.at("operating_point").at("x"), i = level.at("operating_point").at("i");
+    SCOPED_TRACE(x);
+    if (!level.contains("derived")) continue;
+    ++fitted;
+    const auto& pole = level.at("derived").at("unstable_pole");
+    const double truth = true_unstable_pole(e, x, i), value = pole.at("value"), sigma = pole.at("sigma");
+    EXPECT_GT(sigma, 0.0);
+    EXPECT_LT(sigma / truth, 0.05);
+    EXPECT_NEAR(value / truth, 1.0, std::min(0.06, 3 * sigma / truth));
+  }
+  EXPECT_GE(fitted, 5);
+  // At the measured operating point: the first level.
+  EXPECT_EQ(structure.at("level_at_operating_point"), 0);
+  const auto& pole = structure.at("derived").at("unstable_pole");
+  const double truth = true_unstable_pole(e, e.operating_point.at("x"), e.operating_point.at("i"));
+  EXPECT_NEAR(truth, 52.40, 0.01);
+  EXPECT_NEAR(pole.at("value").get<double>() / truth, 1.0, std::min(0.05, 3 * pole.at("sigma").get<double>() / truth));
 }
 
 TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {
