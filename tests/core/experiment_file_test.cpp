@@ -60,9 +60,9 @@ TEST_F(WriteFilesAtomically, ATargetThatCannotBeReplacedLeavesTheOthersAsTheyWer
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), HasSubstr("cannot replace " + (dir_ / "c.svg").string()));
   }
-  EXPECT_EQ(text("a.json"), "old a");                                   // the previous output, not the new one
-  EXPECT_EQ(names(), (std::set<std::string>{"a.json", "c.svg"}));       // no new b.svg, no temporary
-  write_files_atomically({{dir_ / "a.json", "new a"}});  // the set without the blocked target
+  EXPECT_EQ(text("a.json"), "old a");                              // the previous output, not the new one
+  EXPECT_EQ(names(), (std::set<std::string>{"a.json", "c.svg"}));  // no new b.svg, no temporary
+  write_files_atomically({{dir_ / "a.json", "new a"}});            // the set without the blocked target
   EXPECT_EQ(text("a.json"), "new a");
 }
 
