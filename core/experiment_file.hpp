@@ -11,9 +11,10 @@ namespace ambid {
 std::string read_text_file(const std::filesystem::path& path);
 
 // Writes each (path, content) to a fresh temporary file beside its target, flushes it to disk,
-// and only when all are written renames them into place. A crash or error leaves every target
-// either untouched or complete, never half written (the set as a whole is not atomic: a crash
-// between two renames leaves the first file new and the second old).
+// and only when all are written renames them into place. An error leaves every target as it
+// was (a rename that fails puts the targets renamed before it back); a crash leaves every
+// target either untouched or complete, never half written (the set as a whole is not atomic
+// against a crash between two renames: the first file new, the second old).
 void write_files_atomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files);
 
 }  // namespace ambid

@@ -79,21 +79,51 @@ std::string read_text_file(const std::filesystem::path& path) {
 }
 
 void write_files_atomically(const std::vector<std::pair<std::filesystem::path, std::string>>& files) {
-  std::vector<std::filesystem::path> temporaries;
-  auto remove_temporaries = [&] {
-    for (const auto& t : temporaries) ::unlink(t.c_str());
+  // Every new content goes to a temporary and every existing target gets a second name (a hard
+  // link, its backup) before the first rename: a target that cannot be replaced (a directory in
+  // its place) fails before anything changed, and a rename that fails later puts the targets
+  // renamed before it back from their backups, so a failed set leaves every target as it was.
+  // (A file system without hard links replaces such a target without a backup: a later failure
+  // then leaves it new.)
+  enum class Before { absent, backed_up, unsaved };
+  std::vector<std::filesystem::path> temporaries, backups(files.size());
+  std::vector<Before> before(files.size(), Before::absent);
+  std::size_t renamed = 0;
+  auto roll_back = [&] {
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const bool replaced = i < renamed;
+      if (before[i] == Before::backed_up && replaced) ::rename(backups[i].c_str(), files[i].first.c_str());
+      if (before[i] == Before::backed_up && !replaced) ::unlink(backups[i].c_str());
+      if (before[i] == Before::absent && replaced) ::unlink(files[i].first.c_str());
+    }
+    for (const auto& t : temporaries) ::unlink(t.c_str());  // a temporary already renamed is gone
   };
   try {
     for (const auto& [target, content] : files) {
       temporaries.push_back(temporary_beside(target));
       write_all(temporaries.back(), content);
     }
-    for (std::size_t i = 0; i < files.size(); ++i)
-      if (::rename(temporaries[i].c_str(), files[i].first.c_str()) != 0) fail("replace", files[i].first, errno);
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      const std::filesystem::path& target = files[i].first;
+      backups[i] = temporary_beside(target);
+      if (::link(target.c_str(), backups[i].c_str()) == 0) {
+        before[i] = Before::backed_up;
+        continue;
+      }
+      if (errno == ENOENT) continue;
+      std::error_code ignored;
+      if (std::filesystem::is_directory(target, ignored)) fail("replace", target, EISDIR);
+      before[i] = Before::unsaved;
+    }
+    for (; renamed < files.size(); ++renamed)
+      if (::rename(temporaries[renamed].c_str(), files[renamed].first.c_str()) != 0)
+        fail("replace", files[renamed].first, errno);
   } catch (...) {
-    remove_temporaries();  // a temporary already renamed is gone; unlink then fails harmlessly
+    roll_back();
     throw;
   }
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (before[i] == Before::backed_up) ::unlink(backups[i].c_str());
   std::set<std::filesystem::path> directories;
   for (const auto& file : files) directories.insert(file.first.parent_path());
   for (const auto& dir : directories) sync_directory(dir);

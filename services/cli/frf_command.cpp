@@ -8,12 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/experiment_file.hpp"
 #include "core/experiment_io.hpp"
 #include "identifier/frf_analysis.hpp"
 #include "services/cli/commands.hpp"
 #include "services/cli/frf_output.hpp"
 #include "services/cli/progress.hpp"
-#include "services/report/atomic_file.hpp"
 #include "services/report/format.hpp"
 #include "services/report/output_lock.hpp"
 
@@ -147,16 +147,18 @@ void add_frf_command(CLI::App& app) {
     } catch (const InsufficientData& error) {  // say which file cannot support an FRF
       throw InsufficientData(args->experiment + ": " + error.what());
     }
-    // frf.json is rendered before the plots are written and written after them: a failure
-    // leaves no new frf.json beside the plots.
-    const std::string values = frf_json(r, e, args->experiment, args->options).dump(1) + "\n";
+    // Every output rendered before any is written, then all replaced together: a failure
+    // leaves the previous frf.json and plots as they were.
     progress.update("plots", 2, 4);
-    const std::vector<std::string> plots = write_frf_plots(r, e, args->options, args->out);
-    progress.update("write frf.json", 3, 4);
-    report::write_file_atomically(std::filesystem::path(args->out) / "frf.json", values);
+    std::vector<std::pair<std::filesystem::path, std::string>> files = frf_plots(r, e, args->options, args->out);
+    const std::size_t plots = files.size();
+    files.emplace_back(std::filesystem::path(args->out) / "frf.json",
+                       frf_json(r, e, args->experiment, args->options).dump(1) + "\n");
+    progress.update("write frf.json and plots", 3, 4);
+    write_files_atomically(files);
     progress.clear();
     for (const std::string& w : r.warnings) std::cerr << "ambid frf: warning: " << w << "\n";
-    print_summary(r, args->experiment, args->out, plots.size(), fit_band_top_hz(e, args->options));
+    print_summary(r, args->experiment, args->out, plots, fit_band_top_hz(e, args->options));
   });
 }
 

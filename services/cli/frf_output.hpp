@@ -4,6 +4,7 @@
 #include <complex>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -29,10 +30,11 @@ bool pole_in_band(std::complex<double> pole, double top_hz);
 nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experiment,
                         const std::string& experiment_path, const ident::FrfAnalysisOptions& options);
 
-// Writes one bode_OUTPUT_INPUT.svg per pair and one sensitivity_LOOP.svg per loop into
-// `directory`; returns the file names written.
-std::vector<std::string> write_frf_plots(const ident::FrfReport& report, const Experiment& experiment,
-                                         const ident::FrfAnalysisOptions& options,
-                                         const std::filesystem::path& directory);
+// One bode_OUTPUT_INPUT.svg per pair and one sensitivity_LOOP.svg per loop, rendered: each
+// file's path in `directory` with its content, for core's write_files_atomically.
+std::vector<std::pair<std::filesystem::path, std::string>> frf_plots(const ident::FrfReport& report,
+                                                                     const Experiment& experiment,
+                                                                     const ident::FrfAnalysisOptions& options,
+                                                                     const std::filesystem::path& directory);
 
 }  // namespace ambid::cli

@@ -9,7 +9,6 @@
 #include "core/linalg.hpp"
 #include "identifier/iso_14839.hpp"
 #include "services/cli/frf_output.hpp"
-#include "services/report/atomic_file.hpp"
 #include "services/report/format.hpp"
 #include "services/report/svg.hpp"
 
@@ -153,13 +152,13 @@ report::Figure sensitivity_figure(const std::string& loop, const Eigen::VectorXd
 
 }  // namespace
 
-std::vector<std::string> write_frf_plots(const ident::FrfReport& report, const Experiment& experiment,
-                                         const ident::FrfAnalysisOptions& options,
-                                         const std::filesystem::path& directory) {
-  std::vector<std::string> written;
+std::vector<std::pair<std::filesystem::path, std::string>> frf_plots(const ident::FrfReport& report,
+                                                                     const Experiment& experiment,
+                                                                     const ident::FrfAnalysisOptions& options,
+                                                                     const std::filesystem::path& directory) {
+  std::vector<std::pair<std::filesystem::path, std::string>> written;
   const auto write = [&](const std::string& name, const report::Figure& figure) {
-    report::write_file_atomically(directory / name, report::render_svg(figure));
-    written.push_back(name);
+    written.emplace_back(directory / name, report::render_svg(figure));
   };
   for (const ident::PlantPair& pair : report.pairs) {
     const ident::FittedPair* fitted = nullptr;

@@ -8,8 +8,11 @@
 #include <cmath>
 #include <complex>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <numbers>
 #include <random>
+#include <set>
 
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
@@ -230,6 +233,42 @@ TEST(FrfCli, DataThatCannotSupportAnFrfIsRefused) {
   EXPECT_EQ(r.status, 1);
   EXPECT_THAT(r.output, HasSubstr("too_short.json: periodic FRF: 0 whole periods"));
   EXPECT_FALSE(fs::exists(dir / "bad" / "frf.json"));
+}
+
+// Issue 18 item 6: a run that fails while writing (here a directory where one of its plots
+// goes) leaves the previous frf.json and plots as they were; it used to replace the plots
+// written before the failure, so the folder held new plots beside the old frf.json.
+TEST(FrfCli, AFailedRunLeavesThePreviousOutputs) {
+  const fs::path dir = cli_test::fresh_dir("frf_cli_failed");
+  const CommandResult sim = run_ambid("sim --excitation multisine --duration 3 --seed 3 --f-min 1 --f-max 1000 --out " +
+                                      (dir / "ms").string());
+  ASSERT_EQ(sim.status, 0) << sim.output;
+  const std::string frf = "frf " + (dir / "ms.json").string() + " --out " + (dir / "frf").string();
+  ASSERT_EQ(run_ambid(frf + " --no-fit").status, 0);
+  const auto contents = [&] {
+    std::map<std::string, std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir / "frf")) {
+      if (!entry.is_regular_file() || entry.path().filename().string().front() == '.') continue;
+      std::ifstream in(entry.path(), std::ios::binary);
+      files[entry.path().filename().string()] = {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    }
+    return files;
+  };
+  std::map<std::string, std::string> before = contents();
+  ASSERT_TRUE(before.count("frf.json") && before.count("bode_x_u1.svg") && before.count("sensitivity_sigma_max.svg"));
+  fs::remove(dir / "frf" / "sensitivity_sigma_max.svg");
+  fs::create_directories(dir / "frf" / "sensitivity_sigma_max.svg" / "blocker");
+  before.erase("sensitivity_sigma_max.svg");
+  const CommandResult failed = run_ambid(frf);  // with the rational fits: other plots, another frf.json
+  EXPECT_EQ(failed.status, 1) << failed.output;
+  EXPECT_THAT(failed.output, HasSubstr("sensitivity_sigma_max.svg"));
+  const std::map<std::string, std::string> after = contents();
+  std::set<std::string> names_before, names_after;  // nothing new, no temporary left
+  for (const auto& [name, text] : before) names_before.insert(name);
+  for (const auto& [name, text] : after) names_after.insert(name);
+  EXPECT_EQ(names_after, names_before);
+  for (const auto& [name, text] : before)
+    EXPECT_TRUE(after.count(name) && after.at(name) == text) << name << " was replaced by the failed run";
 }
 
 }  // namespace frf_cli_test

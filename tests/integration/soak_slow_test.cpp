@@ -1,5 +1,5 @@
 // Issue 18, the soak: the stack as deployed (deploy/config: the bearing at 0.1 um / 1 mA in
-// 10 s records, the identifier's pem on 0.5 s windows, the diagnostics' learning and
+// 10 s records, the identifier's rpem published every 0.5 s, the diagnostics' learning and
 // persistence; plant, identifier, diagnostics daemons and a rig emulator, all real processes
 // on their own domain) but the plant at 10x real time, for AMBID_SOAK_PLANT_SECONDS of plant
 // time (default 3600: 6 minutes of wall time), with seeded random operator commands (source
@@ -11,13 +11,13 @@
 //   - no false alert: every WARN or ERROR is a history_gap (the bearing never changes);
 //   - no hole in the stored R1 history without an alert that names it: a history_gap or
 //     STALE alert at the hole's plant time, or an identifier's history_gap of the hole's length;
-//   - the plant time the history spans is accounted for: windows stored, plus the plant
-//     seconds the history_gap alerts name, plus at most 20 % for what is dropped by design
-//     (each record's 0.25 s settle and its remainder shorter than a window, windows refused).
-// pem does not keep up at 10x on a shared two-core machine (most 0.5 s windows stop at its
-// iteration limit, 0.8-1.6 s of CPU; measured 2026-12-03: 305 windows, 152.5 s, of 2758 s of
-// plant time identified), so most of the history is alerted gaps: the test is about what
-// survives and what is said, not about throughput.
+//   - the plant time is identified: of the history's span less the plant seconds the
+//     history_gap alerts name (the documented gaps: a killed identifier, a stalled diagnostics
+//     daemon, batches a restarted plant sent before anyone listened), the windows stored cover
+//     at least kIdentifiedFraction; the rest is what is dropped by design (each record's 0.25 s
+//     settle and its remainder shorter than a window, windows refused). With pem (until
+//     2026-12-03) 305 windows, 152.5 s of 2758 s, were identified: pem fell behind at 10x;
+//     with rpem 91 % (measured 2026-12-03; that run failed on 1339 false alerts, README).
 // Run alone: ctest -R Soak (label slow).
 #include <arpa/inet.h>
 #include <gmock/gmock.h>
@@ -55,6 +55,7 @@ using Clock = std::chrono::steady_clock;
 constexpr int kDomain = 212;
 constexpr int kRigPort = 19212;
 constexpr double kSpeed = 10.0;
+constexpr double kIdentifiedFraction = 0.8;
 const std::string kRigAddress = "127.0.0.1:" + std::to_string(kRigPort);
 
 double plant_seconds() {
@@ -228,16 +229,20 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
 
   // No false alert (the first few are shown).
   std::size_t gaps = 0, stale = 0, false_alerts = 0;
+  std::map<std::string, int> false_by_parameter;
   for (const bus::Alert& a : alerts) {
     gaps += a.fault == "history_gap";
     stale += a.level == bus::AlertLevel::stale;
-    if ((a.level == bus::AlertLevel::warn || a.level == bus::AlertLevel::error) && a.fault != "history_gap" &&
-        ++false_alerts <= 10)
+    if ((a.level != bus::AlertLevel::warn && a.level != bus::AlertLevel::error) || a.fault == "history_gap") continue;
+    ++false_by_parameter[std::string(convert::level_name(a.level)) + " " + a.parameter];
+    if (++false_alerts <= 10)
       ADD_FAILURE() << "false alert: " << convert::level_name(a.level) << " " << a.parameter << " " << a.fault << " at "
                     << a.time << ": " << a.message;
   }
   EXPECT_EQ(false_alerts, 0u);
-  std::cout << "  history_gap alerts: " << gaps << ", STALE alerts: " << stale << "\n";
+  std::cout << "  history_gap alerts: " << gaps << ", STALE alerts: " << stale << ", false alerts:";
+  for (const auto& [what, n] : false_by_parameter) std::cout << " " << what << " " << n;
+  std::cout << "\n";
 
   // Every hole in the history named by an alert. Models come every window within a record and
   // 2 windows apart across records (the settle and the record's remainder): a hole is more than
@@ -260,16 +265,18 @@ TEST(Soak, TheStackSurvivesOperatorsKillsAndGarbageWithoutFalseAlertsOrSilentHol
   }
   // The account of the plant time: the span of the history (the store's clock runs on across
   // plant restarts, so a killed plant's downtime, when no samples existed, is not in it), the
-  // part its windows cover, the part the history_gap alerts name (their value: plant seconds
-  // lost), and the rest: each record's settle and remainder, windows not identified (STALE).
+  // part the history_gap alerts name (their value: plant seconds lost), and the part its
+  // windows cover, which must be most of the rest.
   const double span = r1.back().time - r1.front().time + window;
   const double identified = double(r1.size()) * window;
   double alerted = 0.0;
   for (const bus::Alert& a : alerts) alerted += a.fault == "history_gap" ? a.value : 0.0;
+  const double fraction = identified / (span - alerted);
   std::cout << "  plant time " << r1.back().time << " s, history span " << span << " s: " << r1.size()
             << " R1 windows of " << window << " s (" << identified << " s), history_gap alerts name " << alerted
-            << " s, the rest " << span - identified - alerted << " s; " << holes << " holes\n";
-  EXPECT_LT(span - identified - alerted, 0.2 * span) << "plant time neither identified nor named by a gap alert";
+            << " s, the rest " << span - identified - alerted << " s; identified " << 100.0 * fraction
+            << " % of the plant time outside the alerted gaps; " << holes << " holes\n";
+  EXPECT_GE(fraction, kIdentifiedFraction) << "plant time neither identified nor named by a gap alert";
 }
 
 }  // namespace soak_slow_test

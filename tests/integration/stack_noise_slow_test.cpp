@@ -84,5 +84,32 @@ TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTim
   }
 }
 
+// Issue 18 item 8: a nominal stack left running raised a WARN ("rotor mass ... drifting -3.9 %
+// over the last 50 windows") that cleared 6 s later. The deployed stack at 10x real time for
+// 300 s of plant time (the item's 5 minutes; 30 10-s records, each restarting the estimator's
+// predictor after its settle): no WARN or ERROR about the bearing, and most of the plant time
+// identified. Disabled until rpem's bias is fixed: on the rpem stack (2026-12-03) R1 step
+// ERRORs of +2 % from 47 s of plant time on (the default carry 0.1 moves R1 from the nominal
+// start to +1.5-2 % within ~30 s, after the baseline's first 10 s; README "What the service
+// survives"). Run it with --gtest_also_run_disabled_tests.
+TEST(StackAtSensorNoise, DISABLED_ANominalBearingRaisesNoAlertInFiveMinutesOfPlantTime) {
+  Stack stack("stack_noise_nominal", 179);
+  configure_noisy_stack(stack, 10.0);
+  for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
+  std::this_thread::sleep_for(std::chrono::seconds(33));  // ~300 s of plant time after the start
+  for (const char* d : {"diagnostics", "identifier", "plant"}) EXPECT_TRUE(stack.running(d)) << d;
+  const diag::TrendStore store(stack.store(), diag::OpenMode::read_only);
+  const auto r1 = store.history("bearing-1", "R1");
+  ASSERT_GE(r1.size(), 2u) << stack.log("identifier");
+  RecordProperty("plant_seconds", std::to_string(r1.back().time));
+  RecordProperty("windows", std::to_string(r1.size()));
+  EXPECT_GE(r1.back().time, 250.0);
+  EXPECT_GE(double(r1.size()) * 0.5, 0.8 * (r1.back().time - r1.front().time)) << "windows missing";
+  // Every alert the diagnostics daemon stored, not only the last few the bus keeps.
+  for (const diag::Alert& a : store.latest_alerts(100000, "bearing-1"))
+    if ((a.level == diag::Level::warn || a.level == diag::Level::error) && a.fault != "history_gap")
+      ADD_FAILURE() << "false alert at plant time " << a.time << ": " << a.parameter << " " << a.message;
+}
+
 }  // namespace stack_noise_slow_test
 }  // namespace ambid::testing
