@@ -65,6 +65,7 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
   WelchFrfOptions w;
   w.sample_time = e.sample_time;
   w.segment_samples = out.segment_samples;
+  w.overlap = 0.75;
   w.first_sample = level.spans.front().first;
   w.left_out = std::move(left_out);
   try {

@@ -8,8 +8,9 @@
 // - its plant FRF by Welch (frf_welch.hpp) over those spans only: r, u and y detrended per span
 //   (a level's offset and the ramp that the contract's integrator puts into r away from the
 //   recorded operating point are no excitation), segments of the largest power of two that
-//   fits twice into the longest span (at least 64), every segment holding a sample
-//   outside the spans or a clamped one left out;
+//   fits twice into the longest span (at least 64), overlapping by 75 % (over seven rig
+//   records, 35 levels: pole error rms 2.65 % against 3.09 % at 50 %, |error| / sigma rms 0.97),
+//   every segment holding a sample outside the spans or a clamped one left out;
 // - the structure fitted to that FRF from the family's start at the level's point, with the
 //   derived quantities (the unstable pole) and their one-sigma uncertainties.
 // The answer at the record's operating point (the one the user names in the sidecar, measured

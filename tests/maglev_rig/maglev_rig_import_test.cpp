@@ -2,7 +2,8 @@
 // [y_mm, u_V, I_mA] without a time column, or column vectors t, ref, y, u, i) through
 // `import` with the simulated record's sidecar as template and r reconstructed from the
 // board's PID (the sidecar `ambid sim` writes, read back as `ambid import --template` does):
-// the grey-box identification is the one of the record itself.
+// the grey-box identification and `frf`'s structure per settled level are those of the record
+// itself.
 #include <filesystem>
 #include <random>
 #include <string>
@@ -12,6 +13,7 @@
 #include "core/experiment_import.hpp"
 #include "core/experiment_io.hpp"
 #include "core/model_file.hpp"
+#include "identifier/frf_analysis.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "mat_writer.hpp"
 #include "support/maglev_records.hpp"
@@ -35,6 +37,25 @@ void expect_same_identification(const Model& imported, const Model& direct) {
   }
 }
 
+// The same settled levels, and at each the same unstable pole and sigma.
+void expect_same_frf_levels(const ident::FrfReport& imported, const ident::FrfReport& direct) {
+  ASSERT_TRUE(direct.levels.has_value());
+  ASSERT_TRUE(imported.levels.has_value());
+  ASSERT_EQ(imported.levels->levels.size(), direct.levels->levels.size());
+  int fitted = 0;
+  for (std::size_t l = 0; l < direct.levels->levels.size(); ++l) {
+    const ident::LevelStructuredFit &a = imported.levels->levels[l], &b = direct.levels->levels[l];
+    EXPECT_EQ(a.samples, b.samples);
+    ASSERT_EQ(a.fit.has_value(), b.fit.has_value()) << l;
+    if (!b.fit) continue;
+    ++fitted;
+    EXPECT_NEAR(a.fit->derived_value(0) / b.fit->derived_value(0), 1.0, 1e-6) << l;
+    EXPECT_NEAR(a.fit->derived_sigma(0) / b.fit->derived_sigma(0), 1.0, 1e-6) << l;
+  }
+  EXPECT_GE(fitted, 2);
+  EXPECT_EQ(imported.levels->at_operating_point, direct.levels->at_operating_point);
+}
+
 class MaglevRigImport : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -46,12 +67,14 @@ class MaglevRigImport : public ::testing::Test {
                      *dir_ / "run");
     record_ = new Experiment(read_experiment(*dir_ / "run.json").experiment);
     direct_ = new Model(greybox(*record_));
+    direct_frf_ = new ident::FrfReport(ident::analyse_frf(*record_));
   }
   static void TearDownTestSuite() {
     fs::remove_all(*dir_);
     delete dir_;
     delete record_;
     delete direct_;
+    delete direct_frf_;
   }
   static fs::path scratch(const std::string& name) { return *dir_ / name; }
   static ImportOptions rig_template() {
@@ -63,10 +86,12 @@ class MaglevRigImport : public ::testing::Test {
   static fs::path* dir_;
   static Experiment* record_;
   static Model* direct_;
+  static ident::FrfReport* direct_frf_;
 };
 fs::path* MaglevRigImport::dir_ = nullptr;
 Experiment* MaglevRigImport::record_ = nullptr;
 Model* MaglevRigImport::direct_ = nullptr;
+ident::FrfReport* MaglevRigImport::direct_frf_ = nullptr;
 
 TEST_F(MaglevRigImport, OneMatrixWithoutTimeColumnGivesTheSameIdentification) {
   const Experiment& e = *record_;
@@ -83,6 +108,7 @@ TEST_F(MaglevRigImport, OneMatrixWithoutTimeColumnGivesTheSameIdentification) {
   EXPECT_DOUBLE_EQ(imported.experiment.sample_time, 1.5e-3);
   EXPECT_LT((imported.experiment.r - e.r).cwiseAbs().maxCoeff(), 1e-9);  // V
   expect_same_identification(greybox(imported.experiment), *direct_);
+  expect_same_frf_levels(ident::analyse_frf(imported.experiment), *direct_frf_);
 }
 
 TEST_F(MaglevRigImport, ColumnVectorsWithTimeGiveTheSameIdentification) {
@@ -98,6 +124,7 @@ TEST_F(MaglevRigImport, ColumnVectorsWithTimeGiveTheSameIdentification) {
   const ImportResult imported = import_experiment(file, mapping, rig_template());
   EXPECT_EQ(imported.experiment.samples(), e.samples());
   expect_same_identification(greybox(imported.experiment), *direct_);
+  expect_same_frf_levels(ident::analyse_frf(imported.experiment), *direct_frf_);
 }
 
 }  // namespace maglev_rig_import_test
