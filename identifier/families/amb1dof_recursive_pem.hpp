@@ -129,10 +129,10 @@ class Amb1dofRecursivePem {
   // 0.1 um / 1 mA, 2 V): the lag-1 correlation of R1, R2 published every 0.5 s is 0.24-0.45
   // on the four loops, not the ~0.06 of the 6 % carried weight, and it decays over 2-4 windows;
   // with carry 0.001 it stays 0.31 (R1, PID loop), while the batch pem fitted on each window
-  // alone gives -0.2..+0.1: a component with a 1-2 s memory that relax leaves, as K's (a 1 s
-  // memory, not relaxed; with K forgetting 3x faster or relaxed by 0.3 it fell to 0.16-0.28,
-  // but outlier windows doubled R2's 1 s scatter on the PID loop). Throws Error for carry
-  // outside (0, 1].
+  // alone gives -0.2..+0.1: a component with a 1-2 s memory that relax leaves. Not found yet;
+  // K's memory is a suspect but not the whole of it (K forgetting 3x faster or K relaxed by
+  // 0.3: 0.16-0.28, but outlier windows doubled R2's 1 s scatter on the PID loop; K's memory
+  // 3.3 s: 0.30-0.36 on the PID loop). Throws Error for carry outside (0, 1].
   void relax(double carry);
 
   Eigen::Matrix<double, 9, 1> v() const { return theta_.head<9>(); }
