@@ -132,12 +132,18 @@ class Amb1dofRecursivePem {
   // scaled by `carry` (0 < carry <= 1; the variance of each of v1..v9, w1..w3 grows by a random
   // walk to its value / carry; S1 <- carry S1, S2 <- carry^2 S2), a one-off forgetting. The next
   // estimate then rests mostly on its own window's samples (with carry 0.1 and 0.5 s windows at
-  // a 1 s memory, 94 % of its weight), so successive estimates are nearly independent and the
-  // sigma of each is that of its window: what a detector comparing windows assumes. The
-  // predictor gain K keeps its covariance: relaxed too, one window's step in K made the
-  // predictor unstable (observer loop, 0.5 s windows: R1 stuck 30 % off for 2 s of
-  // projections). theta, the state and the sensitivities are kept. Throws Error for carry
-  // outside (0, 1].
+  // a 1 s memory, 94 % of its weight), and the sigma of each is that of its window: what a
+  // detector comparing windows assumes. The predictor gain K keeps its covariance: relaxed
+  // too, one window's step in K made the predictor unstable (observer loop, 0.5 s windows: R1
+  // stuck 30 % off for 2 s of projections). theta, the state and the sensitivities are kept.
+  // Not yet independent (measured 2026-12-03, tests/daemons/continuous_statistics_slow_test.cpp,
+  // 0.1 um / 1 mA, 2 V): the lag-1 correlation of R1, R2 published every 0.5 s is 0.24-0.45
+  // on the four loops, not the ~0.06 of the 6 % carried weight, and it decays over 2-4 windows;
+  // with carry 0.001 it stays 0.31 (R1, PID loop), while the batch pem fitted on each window
+  // alone gives -0.2..+0.1: a component with a 1-2 s memory that relax leaves. Not found yet;
+  // K's memory is a suspect but not the whole of it (K forgetting 3x faster or K relaxed by
+  // 0.3: 0.16-0.28, but outlier windows doubled R2's 1 s scatter on the PID loop; K's memory
+  // 3.3 s: 0.30-0.36 on the PID loop). Throws Error for carry outside (0, 1].
   void relax(double carry);
 
   Eigen::Matrix<double, 9, 1> v() const { return theta_.head<9>(); }

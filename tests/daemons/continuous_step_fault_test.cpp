@@ -14,8 +14,9 @@
 //   voltage (amb1dof_recursive_pem.hpp) R1 read -88 % to -94 % for 0.5-1 s after such a step.
 // - The stack's swap (scripts/run.sh): the nominal record, then a record of the faulty bearing
 //   from rest at the nominal operating point, its first 0.25 s dropped (the daemon's settle) and
-//   a gap: the same two checks. Measured (seeds 5, 6): the first window after the swap +11 %
-//   (lqr) / +7 % (pid), then +20-24 %. It read R1 -74 % in the running stack.
+//   a gap: the same two checks. Measured (seeds 5, 6): the first window after the swap +8.5 %
+//   (lqr) / +14 % (pid), then +18-22 % (+11 % / +7 % before theta was held for the predictor's
+//   warm-up after a restart). It read R1 -74 % in the running stack.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -405,3 +405,59 @@ TEST(DiagnosticsEngine, RefusedBatchLeavesNothingBehind) {
 
 }  // namespace engine_test
 }  // namespace ambid::diag
+
+namespace ambid::diag {
+namespace engine_test {
+
+// Window n of `plant` with R1 at `relative` off nominal and `sigma_factor` times its sigma.
+EstimateWindow with_r1(SyntheticPlant& plant, std::size_t n, double relative, double sigma_factor) {
+  EstimateWindow w = plant.window(n);
+  for (ParameterEstimate& e : w.estimates)
+    if (e.parameter == "R1") {
+      e.value = nominal("R1") * (1.0 + relative);
+      e.sigma *= sigma_factor;
+    }
+  return w;
+}
+
+// An estimate whose sigma is over unconverged_sigma_ratio (2) times the baseline's reported
+// sigma is not judged, and the notes say so; at the baseline's sigma the same value is an ERROR.
+// The first window after a source swap read ks -50 % at 3.1 times its usual sigma.
+TEST(DiagnosticsEngine, AnEstimateThatHasNotConvergedIsNotJudged) {
+  for (const double sigma_factor : {3.0, 1.0}) {
+    TrendStore store(fresh_store_path("unconverged"));
+    DiagnosticsEngine engine(store);
+    SyntheticPlant plant("bearing-A", 5, 0.01);
+    for (std::size_t n = 0; n < 60; ++n) ASSERT_TRUE(engine.process(plant.window(n)).empty()) << n;
+    const std::vector<Alert> alerts = engine.process(with_r1(plant, 60, -0.5, sigma_factor));
+    if (sigma_factor > 2.0) {
+      EXPECT_TRUE(alerts.empty()) << to_json(alerts.front()).dump();
+      ASSERT_EQ(engine.notes().size(), 1u);
+      EXPECT_NE(engine.notes().front().find("R1 not judged: sigma "), std::string::npos) << engine.notes().front();
+      EXPECT_NE(engine.notes().front().find("the estimate has not converged"), std::string::npos);
+      EXPECT_EQ(store.history("bearing-A", "R1").size(), 61u);  // kept in the history
+      EXPECT_TRUE(engine.process(plant.window(61)).empty());
+      ASSERT_EQ(engine.notes().size(), 1u);
+      EXPECT_NE(engine.notes().front().find("R1 judged again"), std::string::npos) << engine.notes().front();
+      // Judged again: a real +20 % step is an ERROR in its first window.
+      const std::vector<Alert> step = engine.process(with_r1(plant, 62, 0.2, 1.0));
+      ASSERT_EQ(step.size(), 1u);
+      EXPECT_EQ(step.front().level, Level::error);
+    } else {
+      ASSERT_EQ(alerts.size(), 1u);
+      EXPECT_EQ(alerts.front().level, Level::error);
+      EXPECT_TRUE(engine.notes().empty());
+    }
+  }
+}
+
+TEST(DiagnosticsEngine, RefusesAnUnconvergedSigmaRatioOfOneOrLess) {
+  for (const double ratio : {1.0, 0.5, std::nan("")}) {
+    EngineConfig c;
+    c.monitor.unconverged_sigma_ratio = ratio;
+    EXPECT_THROW(c.validate(), Error) << ratio;
+  }
+}
+
+}  // namespace engine_test
+}  // namespace ambid::diag

@@ -108,7 +108,8 @@ std::string record(const Stack& stack, const std::string& controller, int seed) 
 TEST(StackSwap, SwapsBetweenThreeControllersOfTheSameBearingRaiseNothing) {
   Stack stack("stack_swap_controllers", 61);
   configure_deployed(stack);
-  const std::string lqr = record(stack, "lqr", 11), pid = record(stack, "pid", 12), leadlag = record(stack, "leadlag", 13);
+  const std::string lqr = record(stack, "lqr", 11), pid = record(stack, "pid", 12),
+                    leadlag = record(stack, "leadlag", 13);
   std::ofstream(stack.dir() / "plant.json")
       << R"({"source": "replay", "target": ")" << lqr << R"(", "batch_samples": 500, "speed": 1})";
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
