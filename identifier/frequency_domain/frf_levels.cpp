@@ -80,6 +80,54 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
   return out;
 }
 
+// Every fitted level's derived quantities at `point` (through structure.transport) and their
+// variances (central differences of derived o transport, J P J'), pooled by inverse variance.
+std::optional<PooledStructure> pool_at(const std::vector<LevelStructuredFit>& levels, const FrfStructure& s,
+                                       const std::map<std::string, double>& point) {
+  std::vector<Eigen::VectorXd> values, variances;
+  for (const LevelStructuredFit& l : levels) {
+    if (!l.fit || l.fit->covariance.size() == 0) continue;
+    const auto at_point = [&](const Eigen::VectorXd& theta) {
+      return s.derived(s.transport(theta, l.operating_point, point));
+    };
+    const Eigen::VectorXd& theta = l.fit->value;
+    const Eigen::VectorXd d = at_point(theta);
+    Eigen::MatrixXd J(d.size(), theta.size());
+    for (Eigen::Index c = 0; c < theta.size(); ++c) {
+      const double h = 1e-6 * std::max(std::abs(theta(c)), 1e-12);
+      Eigen::VectorXd up = theta, down = theta;
+      up(c) += h;
+      down(c) -= h;
+      J.col(c) = (at_point(up) - at_point(down)) / (2 * h);
+    }
+    values.push_back(d);
+    variances.push_back((J * l.fit->covariance * J.transpose()).diagonal());
+  }
+  if (values.size() < 2) return std::nullopt;
+  PooledStructure out;
+  out.levels = int(values.size());
+  out.derived_names = s.derived_names;
+  const Eigen::Index n = values.front().size();
+  out.derived_value.resize(n);
+  out.derived_sigma.resize(n);
+  out.birge_ratio.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double weights = 0.0, sum = 0.0;
+    for (std::size_t l = 0; l < values.size(); ++l) {
+      if (!(variances[l](k) > 0.0)) return std::nullopt;
+      weights += 1.0 / variances[l](k);
+      sum += values[l](k) / variances[l](k);
+    }
+    const double mean = sum / weights;
+    double chi2 = 0.0;
+    for (std::size_t l = 0; l < values.size(); ++l) chi2 += std::pow(values[l](k) - mean, 2) / variances[l](k);
+    out.derived_value(k) = mean;
+    out.birge_ratio(k) = std::sqrt(chi2 / double(values.size() - 1));
+    out.derived_sigma(k) = std::max(1.0, out.birge_ratio(k)) / std::sqrt(weights);
+  }
+  return out;
+}
+
 }  // namespace
 
 LevelStructuredAnalysis fit_structure_per_level(const Experiment& e, const FrfStructure& structure,
@@ -102,6 +150,11 @@ LevelStructuredAnalysis fit_structure_per_level(const Experiment& e, const FrfSt
     throw InsufficientData("frf per level: no settled level of '" + structure.level_signal + "' (" +
                            std::to_string(found.levels.size()) + " found) gave a structured fit" +
                            (out.levels.empty() ? std::string() : ": " + out.levels.front().note));
+  try {
+    if (structure.transport) out.pooled = pool_at(out.levels, structure, e.operating_point);
+  } catch (const Error& err) {  // e.g. an operating point without a value the law needs
+    out.pooled_note = err.what();
+  }
   const auto op = e.operating_point.find(structure.level_signal);
   if (op == e.operating_point.end()) return out;
   double nearest = std::numeric_limits<double>::infinity();
