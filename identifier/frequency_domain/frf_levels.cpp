@@ -12,7 +12,7 @@ namespace {
 
 // The columns of `m` over `span`, each less its straight line through the span (least squares
 // on the orthogonal columns 1 and k - mean k), written into the same rows of `out`.
-void detrend_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::MatrixXd& out) {
+void detrend_level_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::MatrixXd& out) {
   const Eigen::Index n = span.samples;
   const Eigen::VectorXd k = Eigen::VectorXd::LinSpaced(n, -0.5 * double(n - 1), 0.5 * double(n - 1));
   const double kk = k.squaredNorm();
@@ -23,7 +23,7 @@ void detrend_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::Matr
   }
 }
 
-double span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans) {
+double level_span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans) {
   double sum = 0.0;
   Eigen::Index n = 0;
   for (const SettledSpan& s : spans) {
@@ -33,15 +33,15 @@ double span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans
   return sum / double(n);
 }
 
-LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure, const std::vector<bool>& clamped,
-                             const SettledLevel& level) {
+LevelStructuredFit fit_structure_at_level(const Experiment& e, const FrfStructure& structure,
+                                          const std::vector<bool>& clamped, const SettledLevel& level) {
   LevelStructuredFit out;
   out.spans = level.spans;
   out.samples = level.samples();
   for (std::size_t c = 0; c < e.y_names.size(); ++c)
-    out.operating_point[e.y_names[c]] = span_mean(e.y.col(Eigen::Index(c)), level.spans);
+    out.operating_point[e.y_names[c]] = level_span_mean(e.y.col(Eigen::Index(c)), level.spans);
   for (std::size_t c = 0; c < e.u_names.size(); ++c)
-    out.operating_point[e.u_names[c]] = span_mean(e.u.col(Eigen::Index(c)), level.spans);
+    out.operating_point[e.u_names[c]] = level_span_mean(e.u.col(Eigen::Index(c)), level.spans);
 
   Eigen::Index longest = 0;
   for (const SettledSpan& s : level.spans) longest = std::max(longest, s.samples);
@@ -56,9 +56,9 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
                   y = Eigen::MatrixXd::Zero(n, e.y.cols());
   std::vector<bool> left_out(std::size_t(n), true);
   for (const SettledSpan& s : level.spans) {
-    detrend_span(e.r, s, r);
-    detrend_span(e.u, s, u);
-    detrend_span(e.y, s, y);
+    detrend_level_span(e.r, s, r);
+    detrend_level_span(e.u, s, u);
+    detrend_level_span(e.y, s, y);
     for (Eigen::Index k = s.first; k < s.first + s.samples; ++k)
       left_out[std::size_t(k)] = !clamped.empty() && clamped[std::size_t(k)];
   }
@@ -82,8 +82,8 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
 
 // Every fitted level's derived quantities at `point` (through structure.transport) and their
 // variances (central differences of derived o transport, J P J'), pooled by inverse variance.
-std::optional<PooledStructure> pool_at(const std::vector<LevelStructuredFit>& levels, const FrfStructure& s,
-                                       const std::map<std::string, double>& point) {
+std::optional<PooledStructure> pool_levels_at(const std::vector<LevelStructuredFit>& levels, const FrfStructure& s,
+                                              const std::map<std::string, double>& point) {
   std::vector<Eigen::VectorXd> values, variances;
   for (const LevelStructuredFit& l : levels) {
     if (!l.fit || l.fit->covariance.size() == 0) continue;
@@ -145,13 +145,14 @@ LevelStructuredAnalysis fit_structure_per_level(const Experiment& e, const FrfSt
   LevelStructuredAnalysis out;
   out.level_signal = structure.level_signal;
   out.merge = found.merge;
-  for (const SettledLevel& level : found.levels) out.levels.push_back(fit_level(e, structure, clamped, level));
+  for (const SettledLevel& level : found.levels)
+    out.levels.push_back(fit_structure_at_level(e, structure, clamped, level));
   if (std::none_of(out.levels.begin(), out.levels.end(), [](const LevelStructuredFit& l) { return l.fit.has_value(); }))
     throw InsufficientData("frf per level: no settled level of '" + structure.level_signal + "' (" +
                            std::to_string(found.levels.size()) + " found) gave a structured fit" +
                            (out.levels.empty() ? std::string() : ": " + out.levels.front().note));
   try {
-    if (structure.transport) out.pooled = pool_at(out.levels, structure, e.operating_point);
+    if (structure.transport) out.pooled = pool_levels_at(out.levels, structure, e.operating_point);
   } catch (const Error& err) {  // e.g. an operating point without a value the law needs
     out.pooled_note = err.what();
   }
