@@ -33,11 +33,15 @@
 // audit_acceptance_slow_test.cpp). It does not see a residual offset or drift (removed per
 // window) nor structure not coherent with r.
 //
-// Acceptance is sequential (forward selection), up to `max_effects` (3): each round takes the
-// significant finding of best score whose extended residual passes the residual check, or the
-// significant one of best score when none passes (listed first in its round; on a maglev record
-// at 1.5 ms a force law scored 83.7 against the true sensor nonlinearity's 82.4 and left a
-// residual the check rejected, p 0.006 against 1), and the next round searches
+// Acceptance is sequential (forward selection), up to `max_effects` (3): each round takes, of
+// its significant findings whose extended residual passes the residual check (below), the one
+// the fewest others beat head to head (audit_rivals.hpp: the validation improvement of one over
+// the other's replay, noise whitened, above `rival_margin`; ties: the best score), or the
+// significant finding of best score when none passes (a further effect is still missing: the
+// head-to-head test assumes one of the two is right; on a maglev record at 1.5 ms a force law
+// scored 83.7 against the true sensor nonlinearity's 82.4 and left a residual the check
+// rejected), and lists it first in its round; the
+// next round searches
 // the remaining effects on top of the effects taken (same screening, fit, significance test
 // against the previous extended model, residual check). The search ends when no candidate of a round is significant.
 // Then cause = the first effect taken and `causes` all of them in order when the last extended model passes the
@@ -55,7 +59,10 @@
 // order accepted, empty unless cause is a catalogue effect; "finding" the index into
 // "findings"), plus these additive ones: per finding "round" (1-based search round; later
 // rounds are fitted on top of the effects taken before), "significant", "accepted",
-// "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below); the
+// "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below),
+// "head_to_head" [{effect, channel, z_over_it, z_it_over_this}] (a significant finding whose
+// residual passes the check against every other such one of its round, audit_rivals.hpp; empty
+// otherwise); the
 // nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
 // excited_bins, p_value, consistent, null_replicas, outputs: {"y": {coherence_mean, coherence_z,
@@ -112,7 +119,20 @@ struct AuditOptions {
   // (audit_rounding_null.hpp); at least 1.
   int rounding_replicas = 8;
   double foil_margin = 1.5;  // z by which a cause must beat every significant foil (audit_foils.hpp)
+  // z by which a significant finding must beat another head to head to displace it
+  // (audit_rivals.hpp): a right finding is displaced by a given wrong one with probability at
+  // most P(N(0, 1) > rival_margin).
+  double rival_margin = 3.0;
   FitOptions fit;
+};
+
+// One significant finding's validation improvement over another of its round, both ways
+// (audit_rivals.hpp).
+struct RivalTest {
+  std::string effect;
+  int channel = 0;
+  double z_over = 0.0;   // this finding over the rival
+  double z_under = 0.0;  // the rival over this finding
 };
 
 struct AuditFinding {
@@ -126,6 +146,8 @@ struct AuditFinding {
   ResidualCheck residual;    // the extended model's validation residual against noise
   int round = 1;             // search round: fitted on top of the effects taken in earlier rounds
   bool accepted = false;
+  std::vector<RivalTest> rivals;  // a significant finding whose residual passes: against the others
+  int rival_losses = 0;           // how many of them beat it head to head
   std::string evidence;
 };
 

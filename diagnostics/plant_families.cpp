@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "diagnostics/audit/maglev_dac_replay.hpp"
 #include "diagnostics/audit/maglev_starts.hpp"
 #include "diagnostics/maglev_fault_signatures.hpp"
 #include "identifier/identify_window.hpp"
@@ -31,12 +32,13 @@ const MonitoredFamily* find_monitored(std::string_view model) {
   return it == families.end() ? nullptr : &*it;
 }
 
-// The families whose audit reads starting values from the record.
-struct DataStarts {
+// The families whose audit reads starting values, or inputs of the replay, from the record.
+struct AuditFromData {
   const char* family;
   std::vector<sim::Effect> (*starts)(const Experiment&);
+  ReplayInputs (*replay_inputs)(const Experiment&, const std::vector<sim::Effect>&, Eigen::Index);
 };
-constexpr DataStarts kDataStarts[] = {{"maglev1coil_voltage", maglev_audit_starts}};
+constexpr AuditFromData kAuditFromData[] = {{"maglev1coil_voltage", maglev_audit_starts, maglev_replay_inputs}};
 
 }  // namespace
 
@@ -83,9 +85,17 @@ const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model
 }
 
 std::vector<sim::Effect> audit_starts_from_data(const Experiment& measured) {
-  for (const auto& d : kDataStarts)
+  for (const auto& d : kAuditFromData)
     if (measured.plant.model == d.family) return d.starts(measured);
   return {};
+}
+
+ReplayInputs audit_replay_inputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                                 Eigen::Index samples) {
+  for (const auto& d : kAuditFromData)
+    if (measured.plant.model == d.family) return d.replay_inputs(measured, effects, samples);
+  const Eigen::Index outputs = measured.controller ? Eigen::Index(measured.controller->outputs.size()) : 0;
+  return {effects, Eigen::MatrixXd::Zero(samples, outputs)};
 }
 
 }  // namespace ambid::diag

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/experiment.hpp"
+#include "diagnostics/audit/audit_replay.hpp"
 #include "diagnostics/fault_signatures.hpp"
 #include "diagnostics/monitored_parameter.hpp"
 #include "plant_sim/effects.hpp"
@@ -59,5 +60,12 @@ const std::vector<sim::EffectSpec>& effect_catalogue_of(const std::string& model
 // Starting values of the audit's candidates that the family reads from the record itself
 // (maglev1coil_voltage: its grey-box fit, audit/maglev_starts.hpp); empty for a family without.
 std::vector<sim::Effect> audit_starts_from_data(const Experiment& measured);
+
+// The audit's replay of `effects` over the first `samples` samples: the effects the family's
+// extended plant takes, and what the record's logged signals add to the controller's output
+// (maglev1coil_voltage: the DAC's error on the logged command, audit/maglev_dac_replay.hpp);
+// `effects` and zero for a family without.
+ReplayInputs audit_replay_inputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
+                                 Eigen::Index samples);
 
 }  // namespace ambid::diag

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "diagnostics/audit/audit_mode_search.hpp"
 #include "diagnostics/audit/audit_residual_check.hpp"
+#include "diagnostics/audit/audit_rivals.hpp"
 #include "diagnostics/audit/audit_rounding.hpp"
 #include "diagnostics/audit/audit_rounding_null.hpp"
 #include "diagnostics/plant_families.hpp"
@@ -95,6 +96,9 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
     s << "; coil " << f.effect.channel << " force factor K" << f.effect.channel << " x " << 1.0 + f.effect.at("dratio");
   s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
   s << "; validation improvement z = " << f.test.z << " (accepted above " << f.z_threshold << ")";
+  for (const RivalTest& rival : f.rivals)
+    s << "; over " << rival.effect << (rival.channel ? " (channel " + std::to_string(rival.channel) + ")" : "")
+      << " z = " << rival.z_over << ", it over this z = " << rival.z_under;
   if (f.significant)
     for (const FoilFinding& foil : r.foils)
       s << "; out of the catalogue, " << foil.name << " " << foil.value << " " << foil.unit << " at z = " << foil.test.z
@@ -206,6 +210,38 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
   return scored;
 }
 
+// The significant finding of `scored` (best score first) to take (audit_rivals.hpp), each
+// rival given its head-to-head tests; end() when none is significant.
+std::vector<Scored>::iterator take_among_rivals(const AuditResult& r, std::vector<Scored>& scored,
+                                                const AuditOptions& options) {
+  // The rivals: the significant findings whose residual passes the check (the head-to-head
+  // test assumes one of the two is right); when none does (a second effect is still missing),
+  // the best score decides.
+  std::vector<std::size_t> significant;
+  std::vector<const Eigen::MatrixXd*> replays;
+  for (std::size_t i = 0; i < scored.size(); ++i)
+    if (scored[i].finding.significant && scored[i].finding.residual.consistent) {
+      significant.push_back(i);
+      replays.push_back(&scored[i].loop.y);
+    }
+  if (significant.empty())
+    return std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+  if (options.progress) options.progress("test the significant findings head to head", 0, 1);
+  const RivalChoice choice =
+      choose_among_rivals(r.measured, replays, r.validation, options.covariance_lags, options.rival_margin);
+  for (std::size_t a = 0; a < significant.size(); ++a) {
+    AuditFinding& f = scored[significant[a]].finding;
+    f.rival_losses = choice.losses[a];
+    for (std::size_t b = 0; b < significant.size(); ++b)
+      if (a != b) {
+        const sim::Effect& rival = scored[significant[b]].finding.effect;
+        f.rivals.push_back({rival.name, rival.channel, choice.z(Eigen::Index(a), Eigen::Index(b)),
+                            choice.z(Eigen::Index(b), Eigen::Index(a))});
+      }
+  }
+  return scored.begin() + std::ptrdiff_t(significant[choice.pick]);
+}
+
 }  // namespace
 
 AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
@@ -217,6 +253,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     throw Error("audit: residual_alpha must be in (0, 1), got " + std::to_string(options.residual_alpha));
   if (!std::isfinite(options.foil_margin))
     throw Error("audit: foil_margin must be finite, got " + std::to_string(options.foil_margin));
+  if (!std::isfinite(options.rival_margin))
+    throw Error("audit: rival_margin must be finite, got " + std::to_string(options.rival_margin));
   if (options.max_effects < 1 || options.max_effects > 3)
     throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
   if (options.rounding_replicas < 1)
@@ -274,12 +312,10 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     if (round == 1)
       r.z_threshold =
           scored.empty() ? acceptance_threshold(options.false_acceptance, 1) : scored.front().finding.z_threshold;
-    // The strongest evidence against noise: the significant finding of best score (z less the
-    // complexity penalty) among those whose residual passes the check, else among all; put first.
-    auto pick = std::find_if(scored.begin(), scored.end(),
-                             [](const Scored& s) { return s.finding.significant && s.finding.residual.consistent; });
-    if (pick == scored.end())
-      pick = std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+    // Of the significant findings whose residual passes the check, the one the fewest others
+    // beat head to head (audit_rivals.hpp; ties: the best score, z less the complexity
+    // penalty); when none passes, the best score. Put first.
+    auto pick = take_among_rivals(r, scored, options);
     if (pick != scored.end()) {
       std::rotate(scored.begin(), pick, pick + 1);
       pick = scored.begin();
@@ -367,6 +403,16 @@ nlohmann::json check_json(const ResidualCheck& c, const AuditResult& r) {
   return j;
 }
 
+nlohmann::json rivals_json(const AuditFinding& f) {
+  nlohmann::json rivals = nlohmann::json::array();
+  for (const RivalTest& rival : f.rivals)
+    rivals.push_back({{"effect", rival.effect},
+                      {"channel", rival.channel ? nlohmann::json(rival.channel) : nlohmann::json(nullptr)},
+                      {"z_over_it", rival.z_over},
+                      {"z_it_over_this", rival.z_under}});
+  return rivals;
+}
+
 nlohmann::json effect_json(const sim::Effect& e) {
   return {{"effect", e.name},
           {"channel", e.channel ? nlohmann::json(e.channel) : nlohmann::json(nullptr)},
@@ -398,7 +444,8 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
                           {"p_value", f.test.p_value},
                           {"nrmse2_reduction", f.test.reduction},
                           {"z_threshold", f.z_threshold}}},
-                        {"residual_check", check_json(f.residual, r)}});
+                        {"residual_check", check_json(f.residual, r)},
+                        {"head_to_head", rivals_json(f)}});
   nlohmann::json causes = nlohmann::json::array();
   for (std::size_t i = 0; i < r.findings.size(); ++i)
     if (r.findings[i].accepted) {

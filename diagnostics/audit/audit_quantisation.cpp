@@ -54,6 +54,18 @@ void search(const Regression& r, const Eigen::VectorXd& command, double lo, doub
   }
 }
 
+// The middle of the interval of steps that round every command to the same multiple as `step`
+// does: command c rounds to n = round(c / s) for s in (c / (n + 1/2), c / (n - 1/2)).
+double middle_of_same_rounding(const Eigen::VectorXd& command, double step) {
+  double lo = 0.0, hi = INFINITY;
+  for (Eigen::Index k = 0; k < command.size(); ++k) {
+    const double c = std::abs(command(k)), n = std::nearbyint(c / step);
+    lo = std::max(lo, c / (n + 0.5));
+    if (n >= 1.0) hi = std::min(hi, c / (n - 0.5));
+  }
+  return lo < step && step < hi ? 0.5 * (lo + hi) : step;
+}
+
 }  // namespace
 
 DacScreen screen_dac_step(const Eigen::VectorXd& command, const Eigen::VectorXd& current, double smallest,
@@ -73,6 +85,11 @@ DacScreen screen_dac_step(const Eigen::VectorXd& command, const Eigen::VectorXd&
   search(r, command, smallest, largest, int(std::ceil(std::log(largest / smallest) / std::log(1.005))), best);
   const double centre = best.step;
   search(r, command, std::max(smallest, centre / 1.01), std::min(largest, centre * 1.01), 200, best);
+  // The residual is flat over the steps that round every logged command alike: its middle
+  // puts the DAC's edges midway between the logged values about them, where a command logged
+  // at 0.01 V rounds as the DAC rounded the unrounded one (0.01 % off, a 0.35 V step put edges
+  // on logged values, and the replay rounded commands across them that the rig did not).
+  best.step = middle_of_same_rounding(command.head(command.size() - 1), best.step);
   return best;
 }
 

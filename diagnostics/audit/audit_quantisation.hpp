@@ -6,7 +6,8 @@
 // far better than with a step that rounds many commands to other levels. Every step of a
 // logarithmic grid is scored by the residual of that regression (least squares by QR: the
 // columns i[k], 1 orthonormalised once, then the rounded command against them), refined on a
-// finer grid about the best. The cost of a step is rugged (a step 0.5 % off rounds a tenth of
+// finer grid about the best, then moved to the middle of the steps that round every command
+// alike (the residual is flat there). The cost of a step is rugged (a step 0.5 % off rounds a tenth of
 // the commands differently), so a fit from the catalogue's typical step does not find it.
 #include <Eigen/Core>
 

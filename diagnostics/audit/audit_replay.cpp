@@ -1,5 +1,6 @@
 #include "diagnostics/audit/audit_replay.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <string>
 
@@ -25,11 +26,12 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   if (samples < 1 || samples > measured.samples())
     throw Error("audit: cannot replay " + std::to_string(samples) + " of " + std::to_string(measured.samples()) +
                 " samples");
+  const ReplayInputs inputs = audit_replay_inputs(measured, effects, samples);
   const std::unique_ptr<sim::Plant> model =
-      sim::plant_family(measured.plant.model, "audit").make_extended_plant(measured, effects);
+      sim::plant_family(measured.plant.model, "audit").make_extended_plant(measured, inputs.plant_effects);
   sim::ClosedLoopOptions options;
   options.samples = samples;
-  options.excitation = measured.r_deviation().topRows(samples);
+  options.excitation = measured.r_deviation().topRows(samples) + inputs.input_offset;
   const Eigen::VectorXd resolution = logging_resolution(measured);
   if ((resolution.array() > 0.0).any()) {
     options.followed = measured.y.topRows(samples);
@@ -41,7 +43,15 @@ ReplayedLoop replay_loop(const Experiment& measured, const std::vector<sim::Effe
   header.u.resize(0, 0);
   header.r.resize(0, 0);
   const Experiment replayed = sim::run_closed_loop(*model, header, options);
-  return {replayed.y_deviation(), replayed.u_deviation()};
+  // The commands the controller gave, without what the record added to them (audit_replay_inputs).
+  Eigen::MatrixXd u = replayed.u_deviation();
+  const auto& names = measured.controller->outputs;
+  for (std::size_t j = 0; j < names.size(); ++j) {
+    const auto signal = std::find(measured.u_names.begin(), measured.u_names.end(), names[j]);
+    if (signal != measured.u_names.end())
+      u.col(signal - measured.u_names.begin()) -= inputs.input_offset.col(Eigen::Index(j));
+  }
+  return {replayed.y_deviation(), u};
 }
 
 Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,

@@ -40,7 +40,16 @@ struct Segment {
 Eigen::MatrixXd replay_outputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
                                Eigen::Index samples);
 
-// The same replay with the plant inputs the recorded controller commanded in it.
+// What a replay gives the family's extended plant (diagnostics/plant_families.hpp,
+// audit_replay_inputs): its effects, and what is added to the controller's output per sample
+// (samples x controller outputs; e.g. a DAC's error on the logged command).
+struct ReplayInputs {
+  std::vector<sim::Effect> plant_effects;
+  Eigen::MatrixXd input_offset;
+};
+
+// The same replay with the plant inputs the recorded controller commanded in it (without the
+// input offset).
 struct ReplayedLoop {
   Eigen::MatrixXd y;  // samples x outputs, deviations
   Eigen::MatrixXd u;  // samples x inputs, deviations

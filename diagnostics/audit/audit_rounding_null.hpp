@@ -8,8 +8,9 @@
 //
 // A replica is a record of that noise made from the model itself: the model in closed loop
 // with the recorded controller, driven by the record's r (full precision, as the rig's
-// controller reads), its outputs and inputs logged at the record's resolutions on a grid
-// shifted by a seeded random fraction of a step (so each replica rounds differently), r
+// controller reads), its outputs logged at the record's resolutions on a grid shifted by a
+// seeded random fraction of a step (so each replica rounds differently) and its inputs on the
+// record's own grid (where a DAC's levels lie relative to it matters), r
 // reconstructed from the rounded replica as from the record, and the replica replayed exactly
 // as the audit replays the record (audit_replay.hpp, followed). Its residual and r hold the
 // model's answer to the rounding and nothing else.

@@ -33,6 +33,19 @@ Eigen::VectorXd unstable_pole(const Eigen::VectorXd& theta) {
   return Eigen::VectorXd::Constant(1, pole);
 }
 
+// Gravity balance at both points: a x = n_x g, b i = n_i g and emf i = n_i (Ke / Km) m g / L
+// hold at every level, R / L and kw / L do not depend on it.
+Eigen::VectorXd maglev_level_transport(const Eigen::VectorXd& theta, const std::map<std::string, double>& from,
+                                       const std::map<std::string, double>& to) {
+  const double x_ratio = value_of(from, "x", "level") / value_of(to, "x", "operating_point"),
+               i_ratio = value_of(from, "i", "level") / value_of(to, "i", "operating_point");
+  Eigen::VectorXd out = theta;
+  out(0) *= x_ratio;
+  out(1) *= i_ratio;
+  out(4) *= i_ratio;
+  return out;
+}
+
 }  // namespace
 
 ContinuousSystem maglev_structure_model(const Eigen::VectorXd& theta) {
@@ -53,8 +66,13 @@ ContinuousSystem maglev_structure_model(const Eigen::VectorXd& theta) {
 }
 
 const FrfStructure& maglev_frf_structure() {
-  static const FrfStructure s{
-      {"a", "b", "R_over_L", "kw_over_L", "emf"}, {"unstable_pole"}, start, maglev_structure_model, unstable_pole, "x"};
+  static const FrfStructure s{{"a", "b", "R_over_L", "kw_over_L", "emf"},
+                              {"unstable_pole"},
+                              start,
+                              maglev_structure_model,
+                              unstable_pole,
+                              "x",
+                              maglev_level_transport};
   return s;
 }
 

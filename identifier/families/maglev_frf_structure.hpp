@@ -7,7 +7,8 @@
 // with a = n_x g / x0 and b = n_i g / i0 at the measured point (gravity balance). Both pairs
 // x/u and i/u together determine all five. Derived: the unstable pole, the positive real
 // eigenvalue of A (sqrt(a) without the back-EMF's coupling). a and b change with the gap: the
-// structure is fitted per reference level, each at its own means (level signal x).
+// structure is fitted per reference level, each at its own means (level signal x), and a level's
+// theta carried to the operating point by gravity balance at both (a x, b i, emf i invariant).
 #include <Eigen/Core>
 
 #include "core/state_space.hpp"

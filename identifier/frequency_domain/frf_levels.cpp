@@ -12,7 +12,7 @@ namespace {
 
 // The columns of `m` over `span`, each less its straight line through the span (least squares
 // on the orthogonal columns 1 and k - mean k), written into the same rows of `out`.
-void detrend_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::MatrixXd& out) {
+void detrend_level_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::MatrixXd& out) {
   const Eigen::Index n = span.samples;
   const Eigen::VectorXd k = Eigen::VectorXd::LinSpaced(n, -0.5 * double(n - 1), 0.5 * double(n - 1));
   const double kk = k.squaredNorm();
@@ -23,7 +23,7 @@ void detrend_span(const Eigen::MatrixXd& m, const SettledSpan& span, Eigen::Matr
   }
 }
 
-double span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans) {
+double level_span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans) {
   double sum = 0.0;
   Eigen::Index n = 0;
   for (const SettledSpan& s : spans) {
@@ -33,15 +33,15 @@ double span_mean(const Eigen::VectorXd& v, const std::vector<SettledSpan>& spans
   return sum / double(n);
 }
 
-LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure, const std::vector<bool>& clamped,
-                             const SettledLevel& level) {
+LevelStructuredFit fit_structure_at_level(const Experiment& e, const FrfStructure& structure,
+                                          const std::vector<bool>& clamped, const SettledLevel& level) {
   LevelStructuredFit out;
   out.spans = level.spans;
   out.samples = level.samples();
   for (std::size_t c = 0; c < e.y_names.size(); ++c)
-    out.operating_point[e.y_names[c]] = span_mean(e.y.col(Eigen::Index(c)), level.spans);
+    out.operating_point[e.y_names[c]] = level_span_mean(e.y.col(Eigen::Index(c)), level.spans);
   for (std::size_t c = 0; c < e.u_names.size(); ++c)
-    out.operating_point[e.u_names[c]] = span_mean(e.u.col(Eigen::Index(c)), level.spans);
+    out.operating_point[e.u_names[c]] = level_span_mean(e.u.col(Eigen::Index(c)), level.spans);
 
   Eigen::Index longest = 0;
   for (const SettledSpan& s : level.spans) longest = std::max(longest, s.samples);
@@ -56,9 +56,9 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
                   y = Eigen::MatrixXd::Zero(n, e.y.cols());
   std::vector<bool> left_out(std::size_t(n), true);
   for (const SettledSpan& s : level.spans) {
-    detrend_span(e.r, s, r);
-    detrend_span(e.u, s, u);
-    detrend_span(e.y, s, y);
+    detrend_level_span(e.r, s, r);
+    detrend_level_span(e.u, s, u);
+    detrend_level_span(e.y, s, y);
     for (Eigen::Index k = s.first; k < s.first + s.samples; ++k)
       left_out[std::size_t(k)] = !clamped.empty() && clamped[std::size_t(k)];
   }
@@ -80,6 +80,54 @@ LevelStructuredFit fit_level(const Experiment& e, const FrfStructure& structure,
   return out;
 }
 
+// Every fitted level's derived quantities at `point` (through structure.transport) and their
+// variances (central differences of derived o transport, J P J'), pooled by inverse variance.
+std::optional<PooledStructure> pool_levels_at(const std::vector<LevelStructuredFit>& levels, const FrfStructure& s,
+                                              const std::map<std::string, double>& point) {
+  std::vector<Eigen::VectorXd> values, variances;
+  for (const LevelStructuredFit& l : levels) {
+    if (!l.fit || l.fit->covariance.size() == 0) continue;
+    const auto at_point = [&](const Eigen::VectorXd& theta) {
+      return s.derived(s.transport(theta, l.operating_point, point));
+    };
+    const Eigen::VectorXd& theta = l.fit->value;
+    const Eigen::VectorXd d = at_point(theta);
+    Eigen::MatrixXd J(d.size(), theta.size());
+    for (Eigen::Index c = 0; c < theta.size(); ++c) {
+      const double h = 1e-6 * std::max(std::abs(theta(c)), 1e-12);
+      Eigen::VectorXd up = theta, down = theta;
+      up(c) += h;
+      down(c) -= h;
+      J.col(c) = (at_point(up) - at_point(down)) / (2 * h);
+    }
+    values.push_back(d);
+    variances.push_back((J * l.fit->covariance * J.transpose()).diagonal());
+  }
+  if (values.size() < 2) return std::nullopt;
+  PooledStructure out;
+  out.levels = int(values.size());
+  out.derived_names = s.derived_names;
+  const Eigen::Index n = values.front().size();
+  out.derived_value.resize(n);
+  out.derived_sigma.resize(n);
+  out.birge_ratio.resize(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    double weights = 0.0, sum = 0.0;
+    for (std::size_t l = 0; l < values.size(); ++l) {
+      if (!(variances[l](k) > 0.0)) return std::nullopt;
+      weights += 1.0 / variances[l](k);
+      sum += values[l](k) / variances[l](k);
+    }
+    const double mean = sum / weights;
+    double chi2 = 0.0;
+    for (std::size_t l = 0; l < values.size(); ++l) chi2 += std::pow(values[l](k) - mean, 2) / variances[l](k);
+    out.derived_value(k) = mean;
+    out.birge_ratio(k) = std::sqrt(chi2 / double(values.size() - 1));
+    out.derived_sigma(k) = std::max(1.0, out.birge_ratio(k)) / std::sqrt(weights);
+  }
+  return out;
+}
+
 }  // namespace
 
 LevelStructuredAnalysis fit_structure_per_level(const Experiment& e, const FrfStructure& structure,
@@ -97,11 +145,17 @@ LevelStructuredAnalysis fit_structure_per_level(const Experiment& e, const FrfSt
   LevelStructuredAnalysis out;
   out.level_signal = structure.level_signal;
   out.merge = found.merge;
-  for (const SettledLevel& level : found.levels) out.levels.push_back(fit_level(e, structure, clamped, level));
+  for (const SettledLevel& level : found.levels)
+    out.levels.push_back(fit_structure_at_level(e, structure, clamped, level));
   if (std::none_of(out.levels.begin(), out.levels.end(), [](const LevelStructuredFit& l) { return l.fit.has_value(); }))
     throw InsufficientData("frf per level: no settled level of '" + structure.level_signal + "' (" +
                            std::to_string(found.levels.size()) + " found) gave a structured fit" +
                            (out.levels.empty() ? std::string() : ": " + out.levels.front().note));
+  try {
+    if (structure.transport) out.pooled = pool_levels_at(out.levels, structure, e.operating_point);
+  } catch (const Error& err) {  // e.g. an operating point without a value the law needs
+    out.pooled_note = err.what();
+  }
   const auto op = e.operating_point.find(structure.level_signal);
   if (op == e.operating_point.end()) return out;
   double nearest = std::numeric_limits<double>::infinity();

@@ -15,7 +15,8 @@
 //   derived quantities (the unstable pole) and their one-sigma uncertainties.
 // The answer at the record's operating point (the one the user names in the sidecar, measured
 // on the rig) is the level whose mean of the level signal lies within the segmentation's merge
-// distance of it.
+// distance of it; where the family can carry a level's structure to another point, all levels
+// pooled there too (PooledStructure), whether a level lies at the point or not.
 #include <map>
 #include <optional>
 #include <string>
@@ -35,11 +36,26 @@ struct LevelStructuredFit {
   std::string note;
 };
 
+// The derived quantities at the operating point from every fitted level, each level's theta
+// carried there by the family's law (FrfStructure::transport) with its covariance, pooled by
+// inverse variance; the sigma widened by the Birge ratio sqrt(chi^2 / (levels - 1)) when the
+// levels disagree beyond their sigmas (a law the record does not follow).
+struct PooledStructure {
+  std::vector<std::string> derived_names;
+  Eigen::VectorXd derived_value, derived_sigma;
+  Eigen::VectorXd birge_ratio;  // per derived quantity
+  int levels = 0;
+};
+
 struct LevelStructuredAnalysis {
   std::string level_signal;
   std::vector<LevelStructuredFit> levels;         // in the order of their first visit
   std::optional<std::size_t> at_operating_point;  // the level at the record's operating point
   double merge = 0.0;                             // the distance that decides it (signal units)
+  // At the record's operating point from all levels (a family with a transport, two fitted
+  // levels or more); empty otherwise.
+  std::optional<PooledStructure> pooled;
+  std::string pooled_note;  // why it could not be carried there
 };
 
 // `clamped`: per sample, a controller clamp acted (not exogenous); empty: none. Error when the

@@ -22,6 +22,7 @@ StructuredFrfFit fit_structured_frf(const Experiment& header, const Frf& plant, 
   out.derived_names = s.derived_names;
   out.value = fit.parameters;
   out.sigma = fit.standard_deviation;
+  out.covariance = fit.covariance;
   out.misfit = fit.misfit;
   out.converged = fit.converged;
   out.derived_value = s.derived(fit.parameters);

@@ -5,6 +5,7 @@
 // FRF fit (frf_grey_box.hpp: exact ZOH equivalent, noise weights where the FRF has variances),
 // and the quantities the family derives from theta (the maglev's unstable pole) with their
 // one-sigma uncertainty through the fit's covariance (central differences).
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,11 +29,17 @@ struct FrfStructure {
   // The output whose level sets the operating point (the maglev's gap "x"): records of
   // reference steps are fitted level by level (frf_levels.hpp). Empty: one fit of the record.
   std::string level_signal;
+  // theta at the operating point `to` from theta at `from` by the family's law (each a map of
+  // the y and u means), for the estimate at the operating point pooled over the levels
+  // (frf_levels.hpp); null: none.
+  Eigen::VectorXd (*transport)(const Eigen::VectorXd& theta, const std::map<std::string, double>& from,
+                               const std::map<std::string, double>& to) = nullptr;
 };
 
 struct StructuredFrfFit {
   std::vector<std::string> parameter_names, derived_names;
   Eigen::VectorXd value, sigma;                  // theta
+  Eigen::MatrixXd covariance;                    // of theta
   Eigen::VectorXd derived_value, derived_sigma;  // the derived quantities
   double misfit = 0.0;                           // mean |w e|^2 (frf_grey_box.hpp)
   bool converged = false;

@@ -20,7 +20,7 @@ void check_settled_level_options(const Eigen::VectorXd& signal, double sample_ti
 
 // The sample of the largest |difference of means| in each run where it exceeds step / 2,
 // kept when that largest difference reaches step.
-std::vector<Eigen::Index> step_samples(const Eigen::VectorXd& s, Eigen::Index w, double step) {
+std::vector<Eigen::Index> settled_step_samples(const Eigen::VectorXd& s, Eigen::Index w, double step) {
   const Eigen::Index n = s.size();
   Eigen::VectorXd prefix(n + 1);
   prefix(0) = 0.0;
@@ -64,7 +64,7 @@ SettledLevels find_settled_levels(const Eigen::VectorXd& signal, double sample_t
     out.step = 0.02 * magnitude(n / 2);
   }
   out.merge = o.merge > 0.0 ? o.merge : out.step / 2;
-  out.steps = out.step > 0.0 ? step_samples(signal, w, out.step) : std::vector<Eigen::Index>{};
+  out.steps = out.step > 0.0 ? settled_step_samples(signal, w, out.step) : std::vector<Eigen::Index>{};
 
   // The settled span of every visit, then the visits gathered into levels by their means.
   std::vector<Eigen::Index> bounds{0};

@@ -98,6 +98,13 @@ void print_summary(const ident::FrfReport& r, const std::string& path, const std
                   << " +- " << format_number(l.fit->derived_sigma(Eigen::Index(k)));
       std::cout << "\n";
     }
+  if (r.levels && r.levels->pooled)
+    for (std::size_t k = 0; k < r.levels->pooled->derived_names.size(); ++k)
+      std::cout << "  structure pooled over " << r.levels->pooled->levels
+                << " levels at the operating point: " << r.levels->pooled->derived_names[k] << " "
+                << format_number(r.levels->pooled->derived_value(Eigen::Index(k))) << " +- "
+                << format_number(r.levels->pooled->derived_sigma(Eigen::Index(k))) << " (Birge ratio "
+                << format_number(r.levels->pooled->birge_ratio(Eigen::Index(k))) << ")\n";
   if (r.structured)
     for (std::size_t k = 0; k < r.structured->derived_names.size(); ++k)
       std::cout << "  structure: " << r.structured->derived_names[k] << " "

@@ -158,6 +158,17 @@ nlohmann::json frf_json(const ident::FrfReport& report, const Experiment& experi
       structure["levels"] = levels;
       structure["operating_point"] = experiment.operating_point;
       if (a.at_operating_point) structure["level_at_operating_point"] = *a.at_operating_point;
+      if (a.pooled) {
+        json derived = json::object();
+        for (std::size_t k = 0; k < a.pooled->derived_names.size(); ++k) {
+          const auto K = Eigen::Index(k);
+          derived[a.pooled->derived_names[k]] = {{"value", a.pooled->derived_value(K)},
+                                                 {"sigma", a.pooled->derived_sigma(K)},
+                                                 {"birge_ratio", a.pooled->birge_ratio(K)}};
+        }
+        structure["pooled_at_operating_point"] = {{"derived", derived}, {"levels", a.pooled->levels}};
+      }
+      if (!a.pooled_note.empty()) structure["pooled_note"] = a.pooled_note;
     }
     out["structure"] = structure;
   }

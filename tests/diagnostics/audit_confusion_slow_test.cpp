@@ -72,9 +72,12 @@ TEST(AuditIndependentSlow, ConfusionTable) {
     ++t.causes[cause_of(r, truth)];
     std::cerr << row << " [" << what << "] -> " << r.cause << (right ? "" : "   WRONG") << ": "
               << (r.findings.empty() ? std::string() : r.findings.front().evidence) << "\n   findings:";
-    for (const AuditFinding& f : r.findings)
+    for (const AuditFinding& f : r.findings) {
       std::cerr << " " << f.effect.name << (f.effect.channel ? std::to_string(f.effect.channel) : "") << "/r" << f.round
-                << " z " << f.test.z;
+                << " z " << f.test.z << " (";
+      for (const auto& [k, v] : f.effect.parameters) std::cerr << k << "=" << v << " ";
+      std::cerr << "nrmse " << f.nrmse_total_after << ")";
+    }
     for (const FoilFinding& f : r.foils) std::cerr << "; foil " << f.name << " " << f.value << " z " << f.test.z;
     std::cerr << "\n";
   };

@@ -23,7 +23,9 @@ Eigen::VectorXd uniform(Eigen::Index n, double lo, double hi, std::uint64_t seed
 Eigen::VectorXd rounded(const Eigen::VectorXd& v, double step) { return (v / step).array().round().matrix() * step; }
 
 // A first-order coil (a = exp(-R Ts / L), 830 rad/s at 3.25 ms) driven by the command rounded
-// to 0.35 V, its current logged at 0.01 mA: the screen reads the step to 0.05 %.
+// to 0.35 V, its current logged at 0.01 mA: the screen reads the step, and the middle of the
+// steps that round every logged command alike is 0.35 itself (the DAC's edges lie midway
+// between the 0.01 V the command is logged at: the bounds about the top edge are symmetric).
 TEST(AuditRounding, TheDacStepIsReadFromTheCurrent) {
   const Eigen::Index n = 3000;
   const Eigen::VectorXd command = rounded(uniform(n, 3.0, 5.0, 5), 0.01);
@@ -34,7 +36,7 @@ TEST(AuditRounding, TheDacStepIsReadFromTheCurrent) {
     current(k + 1) = a * current(k) + b * std::nearbyint(command(k) / 0.35) * 0.35;
   const Eigen::VectorXd logged = rounded(current, 1e-5);
   const DacScreen s = screen_dac_step(command, logged, 0.02, 2.0);
-  EXPECT_NEAR(s.step, 0.35, 0.35 * 5e-4);
+  EXPECT_NEAR(s.step, 0.35, 1e-9);
   EXPECT_LT(s.residual, 0.01 * s.unrounded);
 
   // Without a DAC no step explains the current much better than the command itself.

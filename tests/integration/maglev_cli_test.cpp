@@ -76,7 +76,8 @@ TEST(MaglevCli, SimulatedRigRecordIsIdentifiedWithinOnePercent) {
 // fitted to the whole record's Welch FRF read 55.9 +- 0.66 rad/s, 6.6 % above the truth at the
 // first level (52.40): it averaged the plant over 13 to 16 mm, where b = n_i g / i0 changes
 // 2.3x. Per level, each at its own means, the unstable pole against the truth's linearisation
-// at those means; at the operating point (the first level's means) the level there.
+// at those means; at the operating point (the first level's means) the level there, and all
+// levels pooled there.
 TEST(MaglevCli, FrfUnstablePolePerLevelOfASimulatedRigRecord) {
   const fs::path dir = fresh_dir("maglev_cli_frf");
   const std::string stem = (dir / "run").string();
@@ -114,6 +115,14 @@ TEST(MaglevCli, FrfUnstablePolePerLevelOfASimulatedRigRecord) {
   const double truth = true_unstable_pole(e, e.operating_point.at("x"), e.operating_point.at("i"));
   EXPECT_NEAR(truth, 52.40, 0.01);
   EXPECT_NEAR(pole.at("value").get<double>() / truth, 1.0, std::min(0.05, 3 * pole.at("sigma").get<double>() / truth));
+  // Every level carried to the operating point by gravity balance and pooled: half the sigma.
+  const auto& pooled = structure.at("pooled_at_operating_point");
+  EXPECT_EQ(pooled.at("levels"), fitted);
+  const auto& pooled_pole = pooled.at("derived").at("unstable_pole");
+  const double pooled_sigma = pooled_pole.at("sigma");
+  EXPECT_LT(pooled_sigma, 0.7 * pole.at("sigma").get<double>());
+  EXPECT_NEAR(pooled_pole.at("value").get<double>() / truth, 1.0, std::min(0.03, 3 * pooled_sigma / truth));
+  EXPECT_LT(pooled_pole.at("birge_ratio").get<double>(), 2.0);  // the levels agree within their sigmas
 }
 
 TEST(MaglevCli, TouchAndUnknownPlantAreClearErrors) {

@@ -1,0 +1,52 @@
+#pragma once
+// Which of a round's rival findings the audit takes (issue 17; the rivals: significant
+// findings whose residual passes the check, audit.hpp): each is tested head to head against
+// every other on the validation segment, and the one the fewest others beat is taken (ties:
+// the better score, i.e. the z against the model it extends).
+//
+// Why not the best z against the base model alone: that z is the evidence against noise of
+// each finding's own change d = y_effect - y_base, and it grows where the noise is small, not
+// where the finding is right. Two effects that both explain a static shift (a coil resistance
+// and an amplifier gain both move the bias currents) reach z in the hundreds on that shift,
+// and the one whose change lies more in the slow, quiet part of the spectrum wins even when it
+// predicts worse: on an independent PID record with amplifier 2's gain -0.28, coil_resistance2
+// scored z 710 against amplifier_gain2's 90, though the amplifier gain's NRMSE was the lower
+// (0.801 against 0.819).
+//
+// The head-to-head test is the improvement test (audit_significance.hpp) with the rival's
+// replay as the base, on signals whitened by one autoregression of order kWhiteningOrder per
+// output, fitted (QR) to the validation residual of the best-scored rival and applied alike to
+// the measurement and every replay: its z is then the evidence in the direction where the two
+// differ (for those two, the current response above the coil pole), weighted by the noise's
+// own spectrum. Whitening matters: on the independent records the right one of amplifier gain
+// and coil resistance beat the wrong one by z 0.5-4.7 unwhitened, by z 5.5-16 whitened, the
+// wrong one the right by at most 1.9. The whitening filter changes the test's power, not its
+// validity (the improvement test estimates the remaining noise covariance itself).
+//
+// A beats B when z(A over B) > margin and z(A over B) > z(B over A). Under "B is right" the
+// first z is near standard normal (measured: up to 2.6 for one channel of a coil resistance
+// over the other, where the two differ by little), hence AuditOptions::rival_margin 3.
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "diagnostics/audit/audit_replay.hpp"
+
+namespace ambid::diag {
+
+// Order of the autoregression that whitens the noise before the head-to-head tests.
+constexpr Eigen::Index kWhiteningOrder = 20;
+
+struct RivalChoice {
+  std::size_t pick = 0;  // index into the replays
+  Eigen::MatrixXd z;     // z(a, b): a's validation improvement over b (diagonal 0)
+  std::vector<int> losses;  // per replay: how many others beat it
+};
+
+// `replays`: the significant findings' replayed outputs (deviations, whole record), best score
+// first; `measured`: the measured deviations. Error when `replays` is empty.
+RivalChoice choose_among_rivals(const Eigen::MatrixXd& measured, const std::vector<const Eigen::MatrixXd*>& replays,
+                                const Segment& validation, Eigen::Index covariance_lags, double margin);
+
+}  // namespace ambid::diag

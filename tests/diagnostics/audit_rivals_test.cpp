@@ -1,0 +1,97 @@
+// The head-to-head choice among a round's findings (diagnostics/audit/audit_rivals.hpp) on
+// synthetic records: two replays that differ by a fast component small against strongly
+// coloured noise and a slow one within the noise's slow band (the situation of an amplifier
+// gain against a coil resistance: their difference spans both, the evidence is in the fast
+// part, the unwhitened test's variance in the slow one).
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/error.hpp"
+#include "diagnostics/audit/audit_rivals.hpp"
+#include "diagnostics/audit/audit_significance.hpp"
+
+namespace ambid::diag {
+namespace audit_rivals_test {
+
+constexpr Eigen::Index kSamples = 6000;
+
+// The shared slow response, and what only replay "a" has: a fast component (amplitude 0.02)
+// and a slow one (0.1) buried in the noise's slow band.
+Eigen::MatrixXd replay(bool with_fast_part) {
+  Eigen::MatrixXd y(kSamples, 2);
+  for (Eigen::Index k = 0; k < kSamples; ++k) {
+    const double t = double(k);
+    y(k, 0) = std::sin(2.0 * std::numbers::pi * t / 700.0);
+    y(k, 1) = 0.5 * std::cos(2.0 * std::numbers::pi * t / 1100.0);
+    if (with_fast_part)
+      y.row(k) += Eigen::RowVector2d(0.02, 0.015) * std::sin(2.0 * std::numbers::pi * 0.31 * t) +
+                  Eigen::RowVector2d(0.1, 0.1) * std::sin(2.0 * std::numbers::pi * t / 900.0);
+  }
+  return y;
+}
+
+// AR(1) noise of pole 0.98 (std about 0.5: 25 times the fast component) per output.
+Eigen::MatrixXd coloured_noise(std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> white(0.0, 0.1);
+  Eigen::MatrixXd e(kSamples, 2);
+  Eigen::RowVector2d state = Eigen::RowVector2d::Zero();
+  for (Eigen::Index k = 0; k < kSamples; ++k) {
+    state = 0.98 * state + Eigen::RowVector2d(white(rng), white(rng));
+    e.row(k) = state;
+  }
+  return e;
+}
+
+const Segment kValidation{kSamples / 2, kSamples};
+
+TEST(AuditRivals, TheRightReplayIsTakenWhateverItsScoreOrder) {
+  const Eigen::MatrixXd a = replay(true), b = replay(false);
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    const Eigen::MatrixXd noise = coloured_noise(seed);
+    // "a" is the truth, listed second (a worse score).
+    const RivalChoice truth_a = choose_among_rivals(a + noise, {&b, &a}, kValidation, 200, 3.0);
+    EXPECT_EQ(truth_a.pick, 1u) << seed;
+    EXPECT_GT(truth_a.z(1, 0), 6.0) << seed;
+    EXPECT_LT(truth_a.z(0, 1), 3.0) << seed;
+    EXPECT_EQ(truth_a.losses[1], 0) << seed;
+    // Whitening is what finds it: unwhitened, the same comparison is a fraction of that z.
+    const double plain = improvement_test(a + noise, b, a, kValidation, 200).z;
+    EXPECT_LT(plain, 0.5 * truth_a.z(1, 0)) << seed << ": unwhitened z " << plain;
+    // "b" the truth: kept first.
+    const RivalChoice truth_b = choose_among_rivals(b + noise, {&b, &a}, kValidation, 200, 3.0);
+    EXPECT_EQ(truth_b.pick, 0u) << seed;
+    EXPECT_EQ(truth_b.losses[0], 0) << seed;
+  }
+}
+
+TEST(AuditRivals, AWrongReplayRarelyBeatsTheRightOne) {
+  // Under "b is right", z(a over b) is near standard normal: above the margin 3 at a rate of
+  // 0.13 %; of 100 records at most 2 (binomial P(more) < 1 %).
+  const Eigen::MatrixXd a = replay(true), b = replay(false);
+  int displaced = 0;
+  double sum = 0.0, sum2 = 0.0;
+  for (std::uint64_t seed = 100; seed < 200; ++seed) {
+    const RivalChoice c = choose_among_rivals(b + coloured_noise(seed), {&a, &b}, kValidation, 200, 3.0);
+    displaced += c.pick == 0 ? 1 : 0;
+    sum += c.z(0, 1);
+    sum2 += c.z(0, 1) * c.z(0, 1);
+  }
+  EXPECT_LE(displaced, 2);
+  const double mean = sum / 100.0, sd = std::sqrt(sum2 / 100.0 - mean * mean);
+  // z(a over b) = e.d / sigma with e the whitened noise: centred, and no wider than standard
+  // normal, so the margin's rate is a bound (measured here: mean within 0.3 of 0, spread 0.38;
+  // sigma comes out wide for this near-Nyquist difference, not yet understood).
+  EXPECT_NEAR(mean, 0.0, 0.3);
+  EXPECT_LT(sd, 1.1);
+}
+
+TEST(AuditRivals, NoReplayIsAnError) {
+  EXPECT_THROW(choose_among_rivals(replay(false), {}, kValidation, 200, 3.0), Error);
+}
+
+}  // namespace audit_rivals_test
+}  // namespace ambid::diag
