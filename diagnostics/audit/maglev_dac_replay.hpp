@@ -19,8 +19,8 @@
 namespace ambid::diag {
 
 // ReplayInputs for the first `samples` samples of `measured` (absolute u as logged, u_names
-// "u", the controller's output "u"): the plant's effects less the DAC, and its error. Error when the record has no u the controller drives while a DAC
-// is among the effects.
+// "u", the controller's output "u"): the plant's effects less the DAC, and its error. Error when the record has no u
+// the controller drives while a DAC is among the effects.
 ReplayInputs maglev_replay_inputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
                                   Eigen::Index samples);
 

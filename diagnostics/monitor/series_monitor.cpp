@@ -14,9 +14,8 @@ void MonitorConfig::validate() const {
   if (learning_windows < kMinLearningWindows)
     throw Error("monitor: learning_windows must be at least " + std::to_string(kMinLearningWindows) + ", got " +
                 std::to_string(learning_windows));
-  if (!(unconverged_sigma_ratio > 1.0) || !std::isfinite(unconverged_sigma_ratio))
-    throw Error("monitor: unconverged_sigma_ratio must be finite and > 1, got " +
-                std::to_string(unconverged_sigma_ratio));
+  if (!(unconverged_sigma_ratio > 1.0))
+    throw Error("monitor: unconverged_sigma_ratio must be > 1, got " + std::to_string(unconverged_sigma_ratio));
   cusum.validate();
   slope.validate();
 }

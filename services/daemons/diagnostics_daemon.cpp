@@ -36,6 +36,9 @@ struct DiagnosticsConfig {
 };
 
 constexpr double kDay = 86400.0;
+// The identifier daemon's estimator is recursive (rpem): its first windows after a restart or
+// a swap rest on little information, and their sigma says so (diag::MonitorConfig).
+constexpr double kRecursiveUnconvergedSigmaRatio = 2.0;
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   reject_unknown_keys(
@@ -46,7 +49,7 @@ DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
   c.engine.monitor.unconverged_sigma_ratio =
-      config_value(j, "unconverged_sigma_ratio", c.engine.monitor.unconverged_sigma_ratio);
+      config_value(j, "unconverged_sigma_ratio", kRecursiveUnconvergedSigmaRatio);
   c.engine.policy.persist_windows = std::size_t(config_value(j, "persist_windows", 100));
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
   c.engine.policy.warn_fraction = config_value(j, "warn_fraction", c.engine.policy.warn_fraction);

@@ -420,13 +420,16 @@ EstimateWindow with_r1(SyntheticPlant& plant, std::size_t n, double relative, do
   return w;
 }
 
-// An estimate whose sigma is over unconverged_sigma_ratio (2) times the baseline's reported
-// sigma is not judged, and the notes say so; at the baseline's sigma the same value is an ERROR.
-// The first window after a source swap read ks -50 % at 3.1 times its usual sigma.
+// With unconverged_sigma_ratio 2 (the diagnostics daemon's, for rpem windows) an estimate whose
+// sigma is over twice the baseline's reported sigma is not judged, and the notes say so; at the
+// baseline's sigma the same value is an ERROR. The first window after a source swap read ks
+// -50 % at 3.1 times its usual sigma.
 TEST(DiagnosticsEngine, AnEstimateThatHasNotConvergedIsNotJudged) {
+  EngineConfig config;
+  config.monitor.unconverged_sigma_ratio = 2.0;
   for (const double sigma_factor : {3.0, 1.0}) {
     TrendStore store(fresh_store_path("unconverged"));
-    DiagnosticsEngine engine(store);
+    DiagnosticsEngine engine(store, config);
     SyntheticPlant plant("bearing-A", 5, 0.01);
     for (std::size_t n = 0; n < 60; ++n) ASSERT_TRUE(engine.process(plant.window(n)).empty()) << n;
     const std::vector<Alert> alerts = engine.process(with_r1(plant, 60, -0.5, sigma_factor));
@@ -449,6 +452,19 @@ TEST(DiagnosticsEngine, AnEstimateThatHasNotConvergedIsNotJudged) {
       EXPECT_TRUE(engine.notes().empty());
     }
   }
+}
+
+// By default (batch windows, each a complete fit) the same estimate at 3 times the baseline's
+// sigma is judged: R1 -50 % is an ERROR.
+TEST(DiagnosticsEngine, ByDefaultEveryEstimateIsJudged) {
+  TrendStore store(fresh_store_path("judged_by_default"));
+  DiagnosticsEngine engine(store);
+  SyntheticPlant plant("bearing-A", 5, 0.01);
+  for (std::size_t n = 0; n < 60; ++n) ASSERT_TRUE(engine.process(plant.window(n)).empty()) << n;
+  const std::vector<Alert> alerts = engine.process(with_r1(plant, 60, -0.5, 3.0));
+  ASSERT_EQ(alerts.size(), 1u);
+  EXPECT_EQ(alerts.front().level, Level::error);
+  EXPECT_TRUE(engine.notes().empty());
 }
 
 TEST(DiagnosticsEngine, RefusesAnUnconvergedSigmaRatioOfOneOrLess) {
