@@ -51,8 +51,7 @@ RivalChoice choose_among_rivals(const Eigen::MatrixXd& measured, const std::vect
   for (const Eigen::MatrixXd* replay : replays) y.push_back(audit_rivals::whitened(*replay, ar));
   for (Eigen::Index a = 0; a < n; ++a)
     for (Eigen::Index b = 0; b < n; ++b)
-      if (a != b)
-        c.z(a, b) = improvement_test(m, y[std::size_t(b)], y[std::size_t(a)], validation, covariance_lags).z;
+      if (a != b) c.z(a, b) = improvement_test(m, y[std::size_t(b)], y[std::size_t(a)], validation, covariance_lags).z;
   c.losses.assign(replays.size(), 0);
   for (Eigen::Index a = 0; a < n; ++a)
     for (Eigen::Index b = 0; b < n; ++b)

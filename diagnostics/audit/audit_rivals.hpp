@@ -39,8 +39,8 @@ namespace ambid::diag {
 constexpr Eigen::Index kWhiteningOrder = 20;
 
 struct RivalChoice {
-  std::size_t pick = 0;  // index into the replays
-  Eigen::MatrixXd z;     // z(a, b): a's validation improvement over b (diagonal 0)
+  std::size_t pick = 0;     // index into the replays
+  Eigen::MatrixXd z;        // z(a, b): a's validation improvement over b (diagonal 0)
   std::vector<int> losses;  // per replay: how many others beat it
 };
 
