@@ -47,7 +47,9 @@ double relative_size(const sim::Effect& effect);
 //   cost of ~0.002 (NRMSE^2) at 1.5-2e-4 s, and a larger lag makes every loop unstable;
 // - coil resistance and amplifier gain: both move the steady kw/R and with it every current,
 //   which dominates the residual; the electrical pole that tells them apart sits at 6.5 Hz
-//   (dkw 0.33 under PID named coil_resistance at z 713);
+//   (dkw 0.33 under PID named coil_resistance at z 713). Since the head-to-head choice
+//   (diagnostics/audit/audit_rivals.hpp) the confusion table's draws name both right (6 of 6);
+//   the group stays until a wider sweep confirms it;
 // - a heavier rotor, saturation and the air gap: each rescales the force factor and the
 //   negative stiffness (saturation's mechanical part is a mass change), the electrical
 //   differences are below the 1 mA noise (dm 0.67 kg named magnetic_saturation at z 5.8 under

@@ -4,13 +4,17 @@
 // - detection probability against effect size, 0.1x to 10x each effect's catalogue scale at
 //   0.1 um / 1 mA, written to audit_detection.csv and audit_detection.svg in the build
 //   directory (README "Hidden effects and the model audit"), with the size at which each
-//   effect is found 90 % of the time. Seeds per size: AMBID_AUDIT_SWEEP_SEEDS (default 4).
+//   effect is found 90 % of the time. AMBID_AUDIT_SWEEP_EFFECTS (comma-separated) sweeps only
+//   those effects. Seeds per size: AMBID_AUDIT_SWEEP_SEEDS (default 3);
+//   at 3 (the README's run) the size of every effect stated_size_for_90() holds must be the
+//   README's within a factor of 2 (about one step of the sweep's grid; "never" stays never).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -78,23 +82,42 @@ double size_for_90(const std::vector<Point>& curve) {
   return NAN;
 }
 
+// The sizes (multiples of the catalogue scale) from which each effect is found 90 % of the
+// time as the README states them, measured with 3 seeds per point (2026-12-03, after the
+// head-to-head choice, audit_rivals.hpp); NaN: at no size of the sweep for good.
+const std::map<std::string, double>& stated_size_for_90() {
+  static const std::map<std::string, double> sizes = {
+      {"coil_resistance", 1.62}, {"amplifier_gain", 0.81}, {"amplifier_bandwidth", 8.1},   {"eddy_current", NAN},
+      {"sensor_delay", 4.56},    {"sensor_gain", NAN},     {"flexible_mode", NAN},         {"magnetic_saturation", NAN},
+      {"air_gap", 1.62},         {"rotor_mass", NAN},      {"harmonic_disturbance", 4.36}, {"force_factor", 4.36}};
+  return sizes;
+}
+
 TEST(AuditIndependentSlow, DetectionProbabilityAgainstEffectSize) {
   const char* env = std::getenv("AMBID_AUDIT_SWEEP_SEEDS");
-  const int seeds = env ? std::max(1, std::atoi(env)) : 4;
+  const int seeds = env ? std::max(1, std::atoi(env)) : 3;
   const std::vector<double> multiples = {0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0};
   const auto& controllers = test_support::effect_record_controllers();
-  const auto catalogue = sim::effect_names();
   std::map<std::string, std::vector<Point>> curves;
   std::ofstream csv(std::string(AMBID_BINARY_DIR) + "/audit_detection.csv");
   csv << "effect,multiple,runs,found,partner_or_channel,unrelated_cause,unstable,probability\n";
-  for (const std::string& name : testing::independent_effect_names()) {
-    if (std::find(catalogue.begin(), catalogue.end(), name) == catalogue.end())
-      continue;  // force_factor before the merge
+  const char* only = std::getenv("AMBID_AUDIT_SWEEP_EFFECTS");
+  auto swept = [&](const std::string& name) {
+    if (!only) return true;
+    std::istringstream list(only);
+    for (std::string item; std::getline(list, item, ',');)
+      if (item == name) return true;
+    return false;
+  };
+  const auto names = testing::independent_effect_names();
+  for (std::size_t n = 0; n < names.size(); ++n) {
+    const std::string& name = names[n];
+    if (!swept(name)) continue;
     for (double m : multiples) {
       Point p;
       p.multiple = m;
       for (int s = 0; s < seeds; ++s) {
-        const auto seed = std::uint64_t(20000 + 1000 * curves.size() + 10 * std::size_t(m * 10) + std::size_t(s));
+        const auto seed = std::uint64_t(20000 + 1000 * n + 10 * std::size_t(m * 10) + std::size_t(s));
         const sim::Effect truth = testing::effect_at(name, m, seed);
         test_support::EffectRecordOptions o =
             testing::realistic_record(controllers[std::size_t(s) % controllers.size()], seed);
@@ -139,6 +162,13 @@ TEST(AuditIndependentSlow, DetectionProbabilityAgainstEffectSize) {
     const double s90 = size_for_90(curve);
     std::cerr << name << ": found 90 % of the time from " << s90 << " x its scale\n";
     csv << "# " << name << " size_for_90 " << s90 << "\n";
+    if (seeds == 3 && stated_size_for_90().contains(name)) {
+      const double stated = stated_size_for_90().at(name);
+      if (std::isnan(stated))
+        EXPECT_TRUE(std::isnan(s90)) << name << ": found 90 % of the time from " << s90 << " x, stated never";
+      else
+        EXPECT_NEAR(std::log(s90), std::log(stated), std::log(2.0)) << name << ": " << s90 << " x, stated " << stated;
+    }
     // An unrelated cause (outside the effect's group) at most once per point, or a quarter of
     // its runs: a wrong name is worse than none.
     for (const Point& p : curve) EXPECT_LE(p.unrelated, std::max(1, p.runs / 4)) << name << " x" << p.multiple;
