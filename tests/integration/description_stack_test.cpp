@@ -36,7 +36,13 @@ using ::testing::Not;
 // see the spread of the estimates (a 1 s record replayed over and over repeats 3 windows,
 // whose spread is no noise model).
 std::string record(const Stack& stack, const std::string& controller, double duration = 10.0) {
-  return record_controller(stack, controller, "--position-noise 1e-9 --current-noise 1e-6", duration, 7);
+  const std::string stem = (stack.dir() / controller).string();
+  const CommandResult r = run_ambid("sim --controller " + controller +
+                                    " --excitation prbs --amplitude 1.0 --position-noise 1e-9 --current-noise 1e-6"
+                                    " --duration " +
+                                    std::to_string(duration) + " --seed 7 --out " + stem);
+  EXPECT_EQ(r.status, 0) << r.output;
+  return stem + ".json";
 }
 
 // R1 of every window the identifier can cut from one replayed record, identified offline with

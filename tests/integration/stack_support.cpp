@@ -9,8 +9,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <gtest/gtest.h>
-
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -134,16 +132,6 @@ std::string Stack::log(const std::string& daemon) const {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-std::string record_controller(const Stack& stack, const std::string& controller, const std::string& noise,
-                              double duration, int seed) {
-  const std::string stem = (stack.dir() / controller).string();
-  const CommandResult r =
-      run_ambid("sim --controller " + controller + " --excitation prbs --amplitude 1.0 " + noise + " --duration " +
-                std::to_string(duration) + " --seed " + std::to_string(seed) + " --out " + stem);
-  EXPECT_EQ(r.status, 0) << r.output;
-  return stem + ".json";
 }
 
 }  // namespace ambid::testing

@@ -50,9 +50,4 @@ class Stack {
   std::map<std::string, pid_t> pids_;
 };
 
-// `ambid sim` of the stack's bearing closed by `controller` (1 V PRBS) with `noise` (its
-// --position-noise / --current-noise options), written into the stack's folder; the sidecar's path.
-std::string record_controller(const Stack& stack, const std::string& controller, const std::string& noise,
-                              double duration, int seed);
-
 }  // namespace ambid::testing
