@@ -68,9 +68,11 @@ TEST(StackMalformed, IdentifierRejectsAndCountsBadSamplesThenIdentifiesGoodOnes)
   // is asymmetric, and a volatile reader drops what came before): offer one batch (a tenth of
   // a window, never identified) until the identifier's Health counts it, then count from there.
   std::optional<bus::Health> last;
+  // The daemon writes one Health per node (itself and each plant) with the same counts; take()
+  // may return them grouped by instance, so the newest is the one with the latest time.
   auto identifier_health = [&] {
     for (auto& h : health->take())
-      if (h.role == "identifier") last = h;
+      if (h.role == "identifier" && (!last || h.time >= last->time)) last = h;
     return last.has_value();
   };
   bool counted = false;
@@ -166,7 +168,7 @@ TEST(StackMalformed, PlantRefusesExcitationOutsideItsLimits) {
   std::optional<bus::Health> last;
   ASSERT_TRUE(wait_for(*b, 10s, [&] {
     for (auto& h : health->take())
-      if (h.role == "plant") last = h;
+      if (h.role == "plant" && (!last || h.time >= last->time)) last = h;
     return last && last->errors == 3;
   })) << stack.log("plant");
   EXPECT_EQ(last->level, bus::AlertLevel::warn);
