@@ -73,6 +73,12 @@ Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& A) {
   return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
+HermitianEigen hermitian_eigen(const Eigen::MatrixXcd& A) {
+  require_square(A, "hermitian_eigen");
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(A);
+  return {eig.eigenvalues(), eig.eigenvectors()};
+}
+
 Eigen::VectorXd singular_values(const Eigen::MatrixXd& A) {
   return Eigen::JacobiSVD<Eigen::MatrixXd>(A).singularValues();
 }
@@ -141,6 +147,12 @@ Eigen::MatrixXd null_space(const Eigen::MatrixXd& A) {
   return qr.householderQ() * Eigen::MatrixXd::Identity(n, dimension);
 }
 
+Eigen::MatrixXd column_space(const Eigen::MatrixXd& A, double threshold) {
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+  if (threshold >= 0.0) qr.setThreshold(threshold);
+  return qr.householderQ() * Eigen::MatrixXd::Identity(A.rows(), qr.rank());
+}
+
 PseudoInverse pseudo_inverse(const Eigen::MatrixXd& A) {
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
   return {cod.pseudoInverse(), cod.rank()};
@@ -172,6 +184,8 @@ Eigen::MatrixXd inverse(const Eigen::MatrixXd& A) {
   require_square(A, "inverse");
   return Eigen::PartialPivLU<Eigen::MatrixXd>(A).inverse();
 }
+
+Eigen::Matrix3d inverse_3x3(const Eigen::Matrix3d& A) { return A.inverse(); }
 
 Eigen::MatrixXd llt_solve(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   require_square(A, "llt_solve");

@@ -32,6 +32,12 @@ struct Svd {
   Eigen::MatrixXd V;
 };
 
+// Eigen decomposition A = V diag(values) V^H of a Hermitian matrix, values ascending.
+struct HermitianEigen {
+  Eigen::VectorXd values;
+  Eigen::MatrixXcd vectors;  // orthonormal columns, one per value
+};
+
 // A Moore-Penrose pseudo-inverse with the numerical rank it was formed with.
 struct PseudoInverse {
   Eigen::MatrixXd pinv;
@@ -48,6 +54,8 @@ Eigen::VectorXcd eigenvalues(const Eigen::MatrixXd& A);
 double spectral_radius(const Eigen::MatrixXd& A);
 // Eigenvalues of a symmetric matrix (lower triangle read), ascending.
 Eigen::VectorXd symmetric_eigenvalues(const Eigen::MatrixXd& A);
+// Eigenvalues and eigenvectors of a Hermitian matrix (lower triangle read).
+HermitianEigen hermitian_eigen(const Eigen::MatrixXcd& A);
 
 // --- singular values (one-sided Jacobi SVD)
 // Singular values, descending.
@@ -79,6 +87,9 @@ Eigen::MatrixXd qr_inverse_gram(const Eigen::MatrixXd& J, double threshold = kDe
 // Orthonormal basis (columns) of the null space of A: the full-pivoting LU kernel,
 // orthonormalised by Householder QR; n x 0 when A has full column rank.
 Eigen::MatrixXd null_space(const Eigen::MatrixXd& A);
+// Orthonormal basis (columns) of the column space of A, one column per unit of its numerical
+// rank (column-pivoting Householder QR; threshold as in qr_solve).
+Eigen::MatrixXd column_space(const Eigen::MatrixXd& A, double threshold = kDefaultThreshold);
 // Pseudo-inverse by the complete orthogonal decomposition.
 PseudoInverse pseudo_inverse(const Eigen::MatrixXd& A);
 
@@ -94,6 +105,9 @@ ConditionedSolution<Eigen::MatrixXd> lu_solve(const Eigen::MatrixXd& A, const Ei
 ConditionedSolution<Eigen::MatrixXcd> lu_solve(const Eigen::MatrixXcd& A, const Eigen::MatrixXcd& B);
 // A^-1 by partial-pivoting LU, as Eigen's inverse() of a dynamic matrix (no singularity check).
 Eigen::MatrixXd inverse(const Eigen::MatrixXd& A);
+// A^-1 of a 3x3 matrix in closed form (cofactors; no allocation, for inner loops; no
+// singularity check).
+Eigen::Matrix3d inverse_3x3(const Eigen::Matrix3d& A);
 // A^-1 B for symmetric positive definite A by Cholesky (LL^T); lower triangle read.
 Eigen::MatrixXd llt_solve(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
 // A^-1 B for symmetric positive (semi)definite A by pivoting LDL^T; lower triangle read.

@@ -45,6 +45,20 @@ TEST(Linalg, SymmetricEigenvaluesAscending) {
   EXPECT_NEAR(e(1), 3.0, 1e-14);
 }
 
+TEST(Linalg, HermitianEigenOfAPauliMixture) {
+  // 2 I + sigma_y = [[2, -i], [i, 2]]: eigenvalues 1 and 3, eigenvectors (1, -i)/sqrt2 and (1, i)/sqrt2.
+  const std::complex<double> i(0.0, 1.0);
+  Eigen::MatrixXcd A(2, 2);
+  A << 2.0, -i, i, 2.0;
+  const linalg::HermitianEigen e = linalg::hermitian_eigen(A);
+  EXPECT_NEAR(e.values(0), 1.0, 1e-14);
+  EXPECT_NEAR(e.values(1), 3.0, 1e-14);
+  const Eigen::Vector2cd low = Eigen::Vector2cd(1.0, -i) / std::sqrt(2.0);
+  EXPECT_NEAR(std::abs(e.vectors.col(0).dot(low)), 1.0, 1e-14);  // the same line, up to a phase
+  EXPECT_LT((A * e.vectors - e.vectors * e.values.asDiagonal()).norm(), 1e-14);
+  EXPECT_THROW(linalg::hermitian_eigen(Eigen::MatrixXcd::Ones(2, 3)), Error);
+}
+
 TEST(Linalg, SvdSolveRecoversExactSolutionOfConsistentOverdeterminedSystem) {
   Eigen::MatrixXd A(5, 2);
   A << 1, 0, 1, 1, 1, 2, 1, 3, 1, 4;
@@ -128,6 +142,29 @@ TEST(Linalg, NullSpaceAndPseudoInverse) {
   EXPECT_EQ(p.rank, 1);
   EXPECT_LT((p.pinv - Eigen::Vector3d(0.5, 0.5, 0.0)).norm(), 1e-14);
   EXPECT_EQ(linalg::null_space(Eigen::MatrixXd::Identity(2, 2)).cols(), 0);
+}
+
+TEST(Linalg, ColumnSpaceIsAnOrthonormalBasisOfTheRange) {
+  Eigen::MatrixXd A(4, 2);
+  A << 1, 1, 2, 1, 3, 1, 4, 1;  // [k, 1]: rank 2
+  const Eigen::MatrixXd Q = linalg::column_space(A);
+  ASSERT_EQ(Q.cols(), 2);
+  EXPECT_LT((Q.transpose() * Q - Eigen::MatrixXd::Identity(2, 2)).norm(), 1e-14);
+  EXPECT_LT((A - Q * (Q.transpose() * A)).norm(), 1e-14);  // the columns of A lie in its span
+  // A constant first column is the second one again: rank 1, spanned by (1, 1, 1, 1) / 2.
+  A.col(0).setConstant(3.0);
+  const Eigen::MatrixXd q = linalg::column_space(A);
+  ASSERT_EQ(q.cols(), 1);
+  EXPECT_NEAR(std::abs(q(0, 0)), 0.5, 1e-15);
+  EXPECT_LT((q * q.transpose() - Eigen::MatrixXd::Constant(4, 4, 0.25)).norm(), 1e-14);
+}
+
+TEST(Linalg, Inverse3x3ByCofactors) {
+  Eigen::Matrix3d A;
+  A << 2, 0, 0, 1, 4, 0, 0, 0, 5;
+  Eigen::Matrix3d truth;  // lower triangular: the inverse by forward substitution
+  truth << 0.5, 0, 0, -0.125, 0.25, 0, 0, 0, 0.2;
+  EXPECT_LT((linalg::inverse_3x3(A) - truth).norm(), 1e-15);
 }
 
 TEST(Linalg, SquareSolvers) {
