@@ -2,9 +2,10 @@
 
 #include <cmath>
 
-#include <Eigen/QR>
+#include <Eigen/Core>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "plant_sim/maglev_rig.hpp"
 
 namespace ambid::diag {
@@ -31,9 +32,8 @@ Regression regression(const Eigen::VectorXd& current) {
   Eigen::MatrixXd basis(n, 2);
   basis.col(0) = current.head(n);
   basis.col(1).setOnes();
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(basis);
   Regression r;
-  r.Q = qr.householderQ() * Eigen::MatrixXd::Identity(n, 2);
+  r.Q = linalg::column_space(basis);  // one column when the current is constant
   const Eigen::VectorXd target = current.tail(n);
   r.target_residual = target - r.Q * (r.Q.transpose() * target);
   return r;

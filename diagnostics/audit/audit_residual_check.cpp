@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
+#include <Eigen/Core>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 
 namespace ambid::diag {
 namespace {
@@ -128,13 +128,13 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
       const Eigen::VectorXcd rb = s.block(b, q, 1, p).transpose();
       Srr += rb * rb.adjoint();
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXcd> eig(Srr);
-    const double largest = eig.eigenvalues().maxCoeff();
+    const linalg::HermitianEigen eig = linalg::hermitian_eigen(Srr);
+    const double largest = eig.values.maxCoeff();
     Eigen::MatrixXcd pinv = Eigen::MatrixXcd::Zero(p, p);
     double rank = 0.0;
     for (Eigen::Index k = 0; k < p; ++k)
-      if (eig.eigenvalues()[k] > 1e-6 * largest) {
-        pinv += eig.eigenvectors().col(k) * eig.eigenvectors().col(k).adjoint() / eig.eigenvalues()[k];
+      if (eig.values[k] > 1e-6 * largest) {
+        pinv += eig.vectors.col(k) * eig.vectors.col(k).adjoint() / eig.values[k];
         rank += 1.0;
       }
     if (rank > 0.0 && rank < Kd) used.push_back({b, pinv, rank});

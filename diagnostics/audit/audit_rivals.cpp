@@ -2,9 +2,10 @@
 
 #include <algorithm>
 
-#include <Eigen/QR>
+#include <Eigen/Core>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "diagnostics/audit/audit_significance.hpp"
 
 namespace ambid::diag {
@@ -21,7 +22,7 @@ Eigen::MatrixXd noise_autoregression(const Eigen::MatrixXd& residual, const Segm
   for (Eigen::Index j = 0; j < e.cols(); ++j) {
     Eigen::MatrixXd lagged(n, order);
     for (Eigen::Index i = 0; i < order; ++i) lagged.col(i) = e.col(j).segment(order - 1 - i, n);
-    a.col(j) = lagged.householderQr().solve(e.col(j).tail(n));
+    a.col(j) = linalg::qr_solve(lagged, Eigen::VectorXd(e.col(j).tail(n))).x;
   }
   return a;
 }
