@@ -8,10 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/LU>  // closed-form fixed-size 3x3 inverse only (kalman_predictor_gain)
-
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/amb1dof_structure.hpp"
 #include "identifier/families/amb1dof_predictor.hpp"
 #include "identifier/time_domain/levenberg_marquardt.hpp"
@@ -37,9 +35,9 @@ Gain kalman_predictor_gain(const Eigen::Matrix4d& A, const Eigen::Matrix<double,
   Gain K = Gain::Zero();
   for (int it = 0; it < 20000; ++it) {
     const Eigen::Matrix3d S = C * P * C.transpose() + R;
-    // Closed-form 3x3 inverse, not core/linalg: up to 20000 steps per record, where a dynamic LU
-    // would allocate every step.
-    K = A * P * C.transpose() * S.inverse();
+    // Closed-form 3x3 inverse: up to 20000 steps per record, where a dynamic LU would allocate
+    // every step.
+    K = A * P * C.transpose() * linalg::inverse_3x3(S);
     Eigen::Matrix4d next = A * P * A.transpose() - K * S * K.transpose();
     next = 0.5 * (next + next.transpose()).eval();
     const double change = (next - P).norm();
@@ -182,8 +180,7 @@ Eigen::Vector3d checked_spread(const Eigen::MatrixXd& y, const Eigen::MatrixXd& 
   // soak (soak_slow_test.cpp) such windows of an unchanged bearing read R1 +38 % at 1.5-3
   // sigmas, window after window, and raised false step ERRORs.
   const Eigen::MatrixXd centred = r.rowwise() - r.colwise().mean();
-  const Eigen::Vector2d power =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(centred.transpose() * centred).eigenvalues();
+  const Eigen::Vector2d power = linalg::symmetric_eigenvalues(centred.transpose() * centred);
   if (!(power(0) > options.min_excitation_ratio * power(1)))
     throw InsufficientData(kPemWho + ": r1 and r2 move together (the weaker of their directions carries " +
                            std::to_string(std::max(power(0), 0.0) / power(1)) +

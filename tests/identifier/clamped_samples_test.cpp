@@ -15,7 +15,6 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/SVD>
 #include <nlohmann/json.hpp>
 #include <numeric>
 
