@@ -6,7 +6,12 @@
 #  3. no DDS header outside services/;
 #  4. the test programs' files are safe in a unity batch (tests/CMakeLists.txt): no anonymous
 #     namespace, file-local names in a namespace named after the file (every *_test.cpp opens
-#     one; none opens another file's), and every #define is #undef'd in the same file.
+#     one; none opens another file's), and every #define is #undef'd in the same file;
+#  5. Eigen's decompositions are compiled once, in core/linalg.cpp: library code (core, plant_sim,
+#     identifier, diagnostics, services, bench, examples) includes no Eigen module but
+#     <Eigen/Core> (and <unsupported/Eigen/FFT>) and names no decomposition class or method; it
+#     calls core/linalg.hpp instead. Tests are exempt (they may compute an independent truth with
+#     Eigen itself), though core/linalg serves them too and compiles faster.
 # Prints every violation as file:line and exits 1 when there is one. Run by ctest (architecture).
 set -euo pipefail
 cd "${1:-$(dirname "$0")/..}"
@@ -64,5 +69,20 @@ for file in $test_sources; do
   done < <(grep -noE '^#define [A-Za-z0-9_]+' "$file" | sed -E 's/#define //' || true)
 done
 
-[ $status -eq 0 ] && echo "architecture: include rules and unity-safe test files hold"
+# 5. Decompositions only in core/linalg.cpp (whole-line comments are not code).
+library_sources=$(sources core plant_sim identifier diagnostics services bench examples 2>/dev/null |
+                  grep -vx core/linalg.cpp || true)
+decomposition='#include <(Eigen/[A-Za-z]+|unsupported/Eigen/[A-Za-z]+)>|'\
+'\b(SelfAdjointEigenSolver|ComplexEigenSolver|GeneralizedEigenSolver|EigenSolver|RealSchur|ComplexSchur|'\
+'JacobiSVD|BDCSVD|HouseholderQR|ColPivHouseholderQR|FullPivHouseholderQR|CompleteOrthogonalDecomposition|'\
+'FullPivLU|PartialPivLU|LLT|LDLT|MatrixExponential|MatrixLogarithm)\b|'\
+'\.(householderQr|colPivHouseholderQr|fullPivHouseholderQr|completeOrthogonalDecomposition|fullPivLu|'\
+'partialPivLu|lu|llt|ldlt|jacobiSvd|bdcSvd|eigenvalues|operatorNorm|determinant)\('
+while IFS= read -r hit; do
+  fail "Eigen decomposition outside core/linalg.cpp (call core/linalg.hpp): $hit"
+done < <(echo "$library_sources" | xargs grep -nE "$decomposition" |
+         grep -vE '^[^:]+:[0-9]+:[[:space:]]*//' |
+         grep -vE '#include <(Eigen/Core|unsupported/Eigen/FFT)>' || true)
+
+[ $status -eq 0 ] && echo "architecture: include rules, unity-safe test files and linalg-only decompositions hold"
 exit $status
