@@ -15,10 +15,9 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/LU>
-
 #include "cli_run.hpp"
 #include "core/experiment_io.hpp"
+#include "core/linalg.hpp"
 #include "core/model_file.hpp"
 #include "core/state_space.hpp"
 
@@ -42,7 +41,7 @@ DiscreteSystem plant_with_a_negative_real_pole() {
   Eigen::MatrixXd b(4, 2), c = Eigen::MatrixXd::Zero(3, 4);
   b << 0.5, 0.1, 0.2, 0.4, 1.0, 0.0, 0.0, 1.0;
   c(0, 0) = c(1, 2) = c(2, 3) = 1.0;
-  return {v * lambda * v.inverse(), b, c, Eigen::MatrixXd::Zero(3, 2), 1e-4};
+  return {v * lambda * linalg::inverse(v), b, c, Eigen::MatrixXd::Zero(3, 2), 1e-4};
 }
 
 std::vector<std::complex<double>> sorted_poles(const DiscreteSystem& s) {

@@ -14,10 +14,9 @@
 #include <iostream>
 #include <string>
 
-#include <Eigen/SVD>
-
 #include "cli_run.hpp"
 #include "core/experiment_io.hpp"
+#include "core/linalg.hpp"
 #include "core/model_file.hpp"
 #include "core/state_space.hpp"
 #include "plant_sim/lamstf.hpp"
@@ -31,7 +30,7 @@ using cli_test::CommandResult;
 using cli_test::fresh_dir;
 using cli_test::run_ambid;
 
-double norm2(const Eigen::MatrixXd& m) { return Eigen::JacobiSVD<Eigen::MatrixXd>(m).singularValues()(0); }
+double norm2(const Eigen::MatrixXd& m) { return linalg::singular_values(m)(0); }
 
 // Mean (4.36) error of the first 30 Markov parameters C A^j B, percent.
 double markov_error_percent(const DiscreteSystem& truth, const DiscreteSystem& model) {

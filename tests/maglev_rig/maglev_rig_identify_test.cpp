@@ -9,8 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
-
+#include "core/linalg.hpp"
 #include "core/model_file.hpp"
 #include "identifier/identify_experiment.hpp"
 #include "support/maglev_records.hpp"
@@ -35,7 +34,7 @@ double true_unstable_pole(const sim::MaglevParameters& p, double x0, double i0) 
   const double emf = p.n_i * p.Ke / rho * std::pow(i0, p.n_i - 1) / (std::pow(x0, p.n_x) * p.L);
   Eigen::Matrix3d A;
   A << 0, 1, 0, p.n_x * p.g / x0, 0, -p.n_i * p.g / i0, 0, emf, -p.R / p.L;
-  return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().real().maxCoeff();
+  return linalg::eigenvalues(A).real().maxCoeff();
 }
 
 Model greybox(const Experiment& e) {
