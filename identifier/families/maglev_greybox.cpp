@@ -272,10 +272,13 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   if (!in.x.allFinite() || !in.i.allFinite() || !in.u.allFinite())
     throw Error(kGreyboxWho + ": a signal is not finite");
   if ((in.x.array() <= 0.0).any()) throw Error(kGreyboxWho + ": the gap x must be positive in every sample");
-  if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0) || !(in.coil_window >= 0.0)) {
+  if (!(in.sample_time > 0.0) || !(in.x0 > 0.0) || !(in.i0 > 0.0) || !(in.window > 0.0) || !(in.coil_window >= 0.0) ||
+      !(in.tolerance > 0.0)) {
     std::ostringstream msg;
-    msg << kGreyboxWho << ": sample time, operating gap, operating current and windows must be positive, got "
-        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window << ", " << in.coil_window;
+    msg << kGreyboxWho
+        << ": sample time, operating gap, operating current, windows and tolerance must be positive, got "
+        << in.sample_time << ", " << in.x0 << ", " << in.i0 << ", " << in.window << ", " << in.coil_window << ", "
+        << in.tolerance;
     throw Error(msg.str());
   }
   if (N < 20) throw InsufficientData(kGreyboxWho + ": " + std::to_string(N) + " samples are too few");
@@ -350,6 +353,7 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
     out.value[name] = value;
     out.sigma[name] = std::sqrt(std::max(variance, 0.0));
     if (!(out.sigma[name] <= 0.5 * std::abs(value))) out.unsupported.push_back(name);
+    if (!(3.0 * out.sigma[name] <= in.tolerance * std::abs(value))) out.unresolved.push_back(name);
   };
   put("R", coil_values(0), coil_cov(0, 0));
   put("L", coil_values(1), coil_cov(1, 1));
@@ -358,6 +362,10 @@ MaglevGreyBoxFit fit_maglev_greybox(const MaglevGreyBoxInput& in) {
   // 1.3-1.5 ms that is most of its sigma: an n_x 0.6 % off moved Ke 11 %).
   const Eigen::Vector3d dlnKe(0.0, -std::log(in.i0) - 1.0 / n_i, std::log(in.x0));
   put("Ke", coil_values(2), coil_cov(2, 2) + coil_values(2) * coil_values(2) * dlnKe.dot(body_cov * dlnKe));
+  // At the operating point the exponents' share cancels but for n_i's own factor (Ke = gamma L / n_i).
+  const double at_point = std::pow(in.i0, n_i - 1.0) / std::pow(in.x0, n_x);
+  put("Ke_at_point", coil_values(2) * at_point,
+      at_point * at_point * (coil_cov(2, 2) + coil_values(2) * coil_values(2) * body_cov(1, 1) / (n_i * n_i)));
   put("rho", rho, body_cov(0, 0));
   put("n_i", n_i, body_cov(1, 1));
   put("n_x", n_x, body_cov(2, 2));
