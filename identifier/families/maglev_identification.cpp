@@ -1,6 +1,8 @@
 #include "identifier/families/maglev_identification.hpp"
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -55,10 +57,11 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
   const auto rel = [&](const char* name) { return s.at(name) / v.at(name); };
   model.uncertainty["R_over_L"] = R / L * std::hypot(rel("R"), rel("L"));
   model.uncertainty["kw_over_L"] = kw / L * rel("L");
-  model.uncertainty["emf"] = emf * std::sqrt(std::pow(rel("Ke"), 2) + std::pow(rel("rho"), 2) + std::pow(rel("L"), 2) +
-                                             std::pow((1.0 / n_i + std::log(in.i0)) * s.at("n_i"), 2) +
-                                             std::pow(std::log(in.x0) * s.at("n_x"), 2));
-  for (const char* name : {"R", "L", "Ke", "Km", "n_i", "n_x", "rho", "unstable_pole"}) {
+  // emf = n_i Ke_at_point / (rho L): Ke at the point, not Ke, whose sigma holds the exponents'
+  // share times ln x0 (counted twice here until 2026-12-03: 2-3x the emf's sigma).
+  model.uncertainty["emf"] =
+      emf * std::sqrt(std::pow(rel("Ke_at_point"), 2) + std::pow(rel("rho"), 2) + std::pow(rel("L"), 2));
+  for (const char* name : {"R", "L", "Ke", "Ke_at_point", "Km", "n_i", "n_x", "rho", "unstable_pole"}) {
     model.physical[name] = v.at(name);
     model.uncertainty[name] = fit.sigma.at(name);
   }
@@ -82,6 +85,16 @@ void fit_maglev_greybox_model(const Experiment& e, const IdentifyOptions&, Model
     for (const auto& name : fit.unsupported) list += (list.empty() ? "" : ", ") + name;
     extra["warnings"].push_back("the record does not support " + list + " (one sigma above half the value)");
   }
+  if (!fit.unresolved.empty()) {
+    std::ostringstream list;
+    list << std::setprecision(2);
+    for (const auto& name : fit.unresolved)
+      list << (list.tellp() > 0 ? ", " : "") << name << " +-" << 300.0 * fit.sigma.at(name) / std::abs(v.at(name))
+           << " %";
+    extra["warnings"].push_back("the record pins " + list.str() + " (three sigma), not to " +
+                                std::to_string(int(std::lround(100 * in.tolerance))) + " %");
+  }
+  extra["greybox"]["unresolved"] = fit.unresolved;
 }
 
 }  // namespace ambid::ident

@@ -6,9 +6,12 @@
 //   continuous: states x, x', i; A = [0 1 0; a 0 -b; 0 emf -R/L], B = [0; 0; kw/L],
 //     C = [1 0 0; 0 0 1] (the linearisation at the operating point, force constant closed by
 //     gravity balance there: Ke' = Ke Km'/Km); discrete: its zero-order hold.
-//   physical: R, L, Ke, Km, n_i, n_x, rho (gravity balance of the fitted law at the operating
-//     point), unstable_pole; uncertainty one sigma of every parameter and physical quantity (of
-//     R_over_L, kw_over_L and emf propagated from the physical ones, taken as independent).
+//   physical: R, L, Ke, Ke_at_point (Ke i0^(n_i-1) / x0^n_x), Km, n_i, n_x, rho (gravity balance
+//     of the fitted law at the operating point), unstable_pole; uncertainty one sigma of every
+//     parameter and physical quantity (of R_over_L, kw_over_L and emf propagated from the
+//     physical ones, taken as independent).
+//   extra.greybox.unresolved and a warning: the physical quantities whose three sigmas exceed
+//     1 % of their value (on the rig's records Ke and Ke_at_point: maglev_greybox.hpp).
 //   extra.operating_point: the source (measured or nominal), x0, i0, u0, and the nominal model's
 //     own equilibrium current and command at x0 with the measured point's ratio to them.
 #include "core/experiment.hpp"

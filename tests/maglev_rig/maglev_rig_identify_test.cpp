@@ -4,10 +4,12 @@
 // noise, 0.01 mm / 0.01 V / 0.01 mA logging; the PID and the r reconstructed from u in the
 // sidecar) at the rig's four sample times, 4000 samples each: the physical parameters against
 // the truth, and the linearisation at the measured operating point (the first level's means).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "core/linalg.hpp"
 #include "core/model_file.hpp"
@@ -83,6 +85,25 @@ TEST(MaglevRigIdentify, PhysicalParametersAtTheRigsSampleTimes) {
       EXPECT_NEAR(m.physical.at(name) / true_values.at(name), 1.0, 3 * sigma) << name;
       EXPECT_LT(sigma, Ts > 3e-3 ? 0.03 : 0.06) << name;
     }
+    // The back-EMF at the measured point, Ke / x0^n_x here, is what the coil equation carries;
+    // these records cannot pin it to 1 % (maglev_greybox.hpp: with the true motion known the
+    // information bounds its sigma at 1.0-2.3 %), and the fit says so rather than claiming it.
+    const double Ke_at_point = p.Ke * std::pow(i0, p.n_i - 1) / std::pow(x0, p.n_x);
+    const double Ke_sigma = m.uncertainty.at("Ke_at_point") / Ke_at_point;
+    std::printf("Ts %.2f ms Ke_at_point %+7.3f %% (sigma %.3f %%)\n", Ts * 1e3,
+                100 * (m.physical.at("Ke_at_point") / Ke_at_point - 1), 100 * Ke_sigma);
+    EXPECT_NEAR(m.physical.at("Ke_at_point") / Ke_at_point, 1.0, 3 * Ke_sigma);
+    EXPECT_GT(3 * Ke_sigma, 0.01);
+    const auto unresolved = m.extra.json().at("greybox").at("unresolved").get<std::vector<std::string>>();
+    const auto listed = [&](const char* name) {
+      return std::find(unresolved.begin(), unresolved.end(), name) != unresolved.end();
+    };
+    EXPECT_TRUE(listed("Ke") && listed("Ke_at_point"));
+    for (const char* name : {"R", "L", "n_i", "n_x", "rho", "unstable_pole"}) EXPECT_FALSE(listed(name)) << name;
+    bool warned = false;
+    for (const auto& w : m.extra.json().at("warnings"))
+      warned = warned || w.get<std::string>().find("Ke_at_point +-") != std::string::npos;
+    EXPECT_TRUE(warned);
   }
 }
 
