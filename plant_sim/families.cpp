@@ -52,9 +52,19 @@ std::unique_ptr<Plant> maglev_plant(const Experiment& header) {
                                               maglev_point(header).x);
 }
 
+// The step at which the rig logged the command (extra.rig.settings.log_u), 0 when not given.
+double maglev_command_resolution(const Experiment& header) {
+  const nlohmann::json& extra = header.extra.json();
+  if (!extra.is_object() || !extra.contains("rig") || !extra["rig"].is_object()) return 0.0;
+  const nlohmann::json settings = extra["rig"].value("settings", nlohmann::json::object());
+  const auto it = settings.is_object() ? settings.find("log_u") : settings.end();
+  return it != settings.end() && it->is_number() && it->get<double>() > 0.0 ? it->get<double>() : 0.0;
+}
+
 std::unique_ptr<Plant> maglev_extended_plant(const Experiment& header, const std::vector<Effect>& effects) {
   return std::make_unique<MaglevExtended>(MaglevParameters::from_map(header.plant.parameters), maglev_point(header),
-                                          measured_point(header), effects, header.sample_time);
+                                          measured_point(header), effects, header.sample_time,
+                                          maglev_command_resolution(header));
 }
 
 ContinuousSystem maglev_linearize_header(const Experiment& header) {

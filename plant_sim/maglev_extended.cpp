@@ -30,9 +30,11 @@ void require_extended_size(const Eigen::VectorXd& v, Eigen::Index n, const char*
 }  // namespace
 
 MaglevExtended::MaglevExtended(const MaglevParameters& nominal, const MaglevOperatingPoint& point, bool measured,
-                               const std::vector<Effect>& effects, double sample_time)
-    : p_(nominal), x0_(point.x), sample_time_(sample_time) {
+                               const std::vector<Effect>& effects, double sample_time, double command_resolution)
+    : p_(nominal), x0_(point.x), sample_time_(sample_time), command_resolution_(command_resolution) {
   nominal.validate();
+  if (!(command_resolution >= 0.0) || !std::isfinite(command_resolution))
+    fail_extended("the command's logging resolution must be finite and >= 0", command_resolution);
   if (!(point.x > nominal.x_min && point.x < nominal.x_max))
     fail_extended("the operating gap must lie between the stops", point.x);
   if (measured && !(point.i > 0.0)) fail_extended("the measured operating current must be positive", point.i);
@@ -117,7 +119,7 @@ double MaglevExtended::sensed(double gap) const {
 
 MaglevExtended::Continuous MaglevExtended::continuous_derivative(const Continuous& s, double u, double Fz) const {
   const double gap = s[0], rate = s[1], current = s[2];
-  const double command = round_to(u, dac_step_);
+  const double command = dac_step_ > 0.0 ? round_to(round_to(u, command_resolution_), dac_step_) : u;
   const double gap_power = std::pow(gap, p_.n_x);
   const double emf =
       -p_.n_i * p_.Ke * std::pow(std::max(std::abs(current), min_current_), p_.n_i - 1.0) * rate / gap_power;

@@ -14,7 +14,11 @@
 // gives states named like a signal the operating point's value), then harmonic_cos,
 // harmonic_sin (harmonic_disturbance), then x_sensor_1..n (sensor_delay: past readings,
 // advanced once per sample by advance(), derivative 0). Outputs x (the sensor's reading), i;
-// input u (the command; actuator_quantisation rounds it); disturbance Fz.
+// input u (the command; actuator_quantisation rounds it as the record logs it: the audit
+// replays the DAC on the logged command, and a step fitted a fraction off the true one puts
+// its edges between the logged values where the record has none, so a model that rounded the
+// unlogged command would round samples across an edge that the replay cannot; with the true
+// 0.35 V step the edges lie midway between the rig's 0.01 V and both agree); disturbance Fz.
 #include <string>
 #include <vector>
 
@@ -32,9 +36,10 @@ class MaglevExtended : public Plant {
   // `point`: the record's operating point (x0 strictly between the stops, i0 > 0), `measured`
   // whether it was measured. `sample_time` is needed by sensor_delay. Error for an effect not
   // in the catalogue or given twice, parameters the effects make invalid (e.g. R + dR <= 0),
-  // a sensor whose reading x0 no gap between the stops gives, a bad sample time.
+  // a sensor whose reading x0 no gap between the stops gives, a bad sample time or command
+  // resolution. `command_resolution`: the step at which the record logs u (0: exact).
   MaglevExtended(const MaglevParameters& nominal, const MaglevOperatingPoint& point, bool measured,
-                 const std::vector<Effect>& effects, double sample_time);
+                 const std::vector<Effect>& effects, double sample_time, double command_resolution = 0.0);
 
   // The parameters after the effects (Km, Ke anchored as above, exponents with force_law).
   const MaglevParameters& parameters() const { return p_; }
@@ -71,6 +76,7 @@ class MaglevExtended : public Plant {
   MaglevParameters p_;
   double x0_ = 0.0, gap0_ = 0.0, current0_ = 0.0, sample_time_ = 0.0;
   double sensor_scale_ = 1.0, sensor_offset_ = 0.0, sensor_power_ = 1.0, dac_step_ = 0.0;
+  double command_resolution_ = 0.0;
   double min_current_ = 0.0;  // floor of |i| in i^(n_i - 1) of the back-EMF
   int harmonic_state_ = -1, delay_state_ = -1, delay_whole_ = 0, delay_length_ = 0, continuous_states_ = 3;
   double harmonic_omega_ = 0.0, harmonic_cos_ = 0.0, harmonic_sin_ = 0.0, delay_fraction_ = 0.0;

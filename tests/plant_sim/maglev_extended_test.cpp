@@ -85,6 +85,25 @@ TEST(MaglevExtended, TheDacRoundsTheCommandAndResistanceAndGainMoveTheCoil) {
               1e-12);
 }
 
+// With the command logged at 0.01 V the DAC rounds the command as logged: a step of 0.3503 V has
+// its edge between levels 11 and 12 at 11.5 x 0.3503 = 4.02845 V, so 4.026 (logged 4.03) goes
+// up to 12 x 0.3503 where the exact command would stay at 11 x 0.3503.
+TEST(MaglevExtended, TheDacRoundsTheCommandAsLogged) {
+  const MaglevParameters p = MaglevParameters::nominal();
+  const MaglevOperatingPoint op{0.014, 0.019, 4.0};
+  const Eigen::Vector3d x(0.014, 0.0, 0.019);
+  const std::vector<Effect> dac = {effect("actuator_quantisation", {{"step", 0.3503}})};
+  const MaglevExtended logged(p, op, true, dac, 3.25e-3, 0.01), exact(p, op, true, dac, 3.25e-3);
+  const MaglevExtended ideal(p, op, true, {}, 3.25e-3);
+  const Eigen::VectorXd u = Eigen::VectorXd::Constant(1, 4.026);
+  EXPECT_NEAR(logged.derivative(x, u, kNoForce)[2],
+              ideal.derivative(x, Eigen::VectorXd::Constant(1, 12 * 0.3503), kNoForce)[2], 1e-12);
+  EXPECT_NEAR(exact.derivative(x, u, kNoForce)[2],
+              ideal.derivative(x, Eigen::VectorXd::Constant(1, 11 * 0.3503), kNoForce)[2], 1e-12);
+  EXPECT_THAT([&] { MaglevExtended(p, op, true, dac, 3.25e-3, -0.01); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("the command's logging resolution must be finite and >= 0")));
+}
+
 TEST(MaglevExtended, TheDelayedReadingLagsByWholeAndFractionalSamples) {
   const MaglevParameters p = MaglevParameters::nominal();
   const MaglevOperatingPoint op{0.014, p.equilibrium_current(0.014), 0.0};
