@@ -1,6 +1,7 @@
 #include "diagnostics/audit/audit_rivals.hpp"
 
 #include <algorithm>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -11,29 +12,44 @@
 namespace ambid::diag {
 namespace audit_rivals {
 
-// Per output j, the coefficients a (order x outputs) of the autoregression
-// e[k] = sum_i a_i e[k - i] + white, fitted by QR to the rows of `residual` in `segment` (the
-// samples a clamp acted on are zero there, as everywhere in the audit's sums).
-Eigen::MatrixXd noise_autoregression(const Eigen::MatrixXd& residual, const Segment& segment, Eigen::Index order) {
+// The joint autoregression of the outputs' noise, output by output in their order:
+// e_j[k] = sum_{i=1..order} sum_l a e_l[k - i] + sum_{l<j} c e_l[k] + white, fitted by QR to the
+// rows of `residual` in `segment` (the samples a clamp acted on are zero there, as everywhere
+// in the audit's sums). Per output j the coefficients of those regressors (lagged outputs,
+// then the earlier outputs at the same sample); empty: too short to fit, no whitening.
+std::vector<Eigen::VectorXd> noise_autoregression(const Eigen::MatrixXd& residual, const Segment& segment,
+                                                  Eigen::Index order) {
   const Eigen::MatrixXd e = segment.kept_rows(residual);
-  const Eigen::Index n = e.rows() - order;
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(order, e.cols());
-  if (n < 4 * order) return a;  // too short to fit: no whitening
-  for (Eigen::Index j = 0; j < e.cols(); ++j) {
-    Eigen::MatrixXd lagged(n, order);
-    for (Eigen::Index i = 0; i < order; ++i) lagged.col(i) = e.col(j).segment(order - 1 - i, n);
-    a.col(j) = linalg::qr_solve(lagged, Eigen::VectorXd(e.col(j).tail(n))).x;
-  }
+  const Eigen::Index n = e.rows() - order, q = e.cols();
+  if (n < 4 * order * q) return {};
+  std::vector<Eigen::VectorXd> a;
+  Eigen::MatrixXd regressors(n, order * q + q);
+  for (Eigen::Index i = 0; i < order; ++i)
+    for (Eigen::Index l = 0; l < q; ++l) regressors.col(i * q + l) = e.col(l).segment(order - 1 - i, n);
+  for (Eigen::Index l = 0; l < q; ++l) regressors.col(order * q + l) = e.col(l).tail(n);
+  for (Eigen::Index j = 0; j < q; ++j)
+    a.push_back(linalg::qr_solve(regressors.leftCols(order * q + j), Eigen::VectorXd(e.col(j).tail(n))).x);
   return a;
 }
 
-// y[k] - sum_i a_i y[k - i] per output (the prediction error of the noise's autoregression):
-// the same filter for the measurement and every replay.
-Eigen::MatrixXd whitened(const Eigen::MatrixXd& y, const Eigen::MatrixXd& a) {
+// Per output j, y_j[k] less its prediction by the noise's autoregression from y itself (the
+// prediction error of the noise model): the same filter for the measurement and every replay.
+// The samples a clamp acted on (`left_out`) are set to zero first, so that what was logged
+// there reaches no whitened sample after them either.
+Eigen::MatrixXd whitened(const Eigen::MatrixXd& signal, const std::vector<Eigen::VectorXd>& a,
+                         const Segment& left_out) {
+  Eigen::MatrixXd y = signal;
+  for (Eigen::Index k = 0; k < y.rows(); ++k)
+    if (left_out.left_out_at(k)) y.row(k).setZero();
+  if (a.empty()) return y;
+  const Eigen::Index q = y.cols(), N = y.rows(), order = (a.front().size()) / q;
   Eigen::MatrixXd w = y;
-  for (Eigen::Index i = 0; i < a.rows(); ++i)
-    for (Eigen::Index j = 0; j < y.cols(); ++j)
-      w.col(j).tail(y.rows() - i - 1) -= a(i, j) * y.col(j).head(y.rows() - i - 1);
+  for (Eigen::Index j = 0; j < q; ++j) {
+    const Eigen::VectorXd& c = a[std::size_t(j)];
+    for (Eigen::Index i = 0; i < order; ++i)
+      for (Eigen::Index l = 0; l < q; ++l) w.col(j).tail(N - i - 1) -= c[i * q + l] * y.col(l).head(N - i - 1);
+    for (Eigen::Index l = 0; l < j; ++l) w.col(j) -= c[order * q + l] * y.col(l);
+  }
   return w;
 }
 
@@ -45,11 +61,11 @@ RivalChoice choose_among_rivals(const Eigen::MatrixXd& measured, const std::vect
   const auto n = Eigen::Index(replays.size());
   RivalChoice c;
   c.z = Eigen::MatrixXd::Zero(n, n);
-  const Eigen::MatrixXd ar =
+  const std::vector<Eigen::VectorXd> ar =
       audit_rivals::noise_autoregression(measured - *replays.front(), validation, kWhiteningOrder);
-  const Eigen::MatrixXd m = audit_rivals::whitened(measured, ar);
+  const Eigen::MatrixXd m = audit_rivals::whitened(measured, ar, validation);
   std::vector<Eigen::MatrixXd> y;
-  for (const Eigen::MatrixXd* replay : replays) y.push_back(audit_rivals::whitened(*replay, ar));
+  for (const Eigen::MatrixXd* replay : replays) y.push_back(audit_rivals::whitened(*replay, ar, validation));
   for (Eigen::Index a = 0; a < n; ++a)
     for (Eigen::Index b = 0; b < n; ++b)
       if (a != b) c.z(a, b) = improvement_test(m, y[std::size_t(b)], y[std::size_t(a)], validation, covariance_lags).z;

@@ -14,13 +14,29 @@
 // (0.801 against 0.819).
 //
 // The head-to-head test is the improvement test (audit_significance.hpp) with the rival's
-// replay as the base, on signals whitened by one autoregression of order kWhiteningOrder per
-// output, fitted (QR) to the validation residual of the best-scored rival and applied alike to
-// the measurement and every replay: its z is then the evidence in the direction where the two
-// differ (for those two, the current response above the coil pole), weighted by the noise's
-// own spectrum. Whitening matters: on the independent records the right one of amplifier gain
-// and coil resistance beat the wrong one by z 0.5-4.7 unwhitened, by z 5.5-16 whitened, the
-// wrong one the right by at most 1.9. The whitening filter changes the test's power, not its
+// replay as the base, on signals whitened by one joint autoregression of the outputs (order
+// kWhiteningOrder: each output predicted from the past of all outputs and from the outputs
+// before it at the same sample), fitted (QR) to the validation residual of the best-scored
+// rival and applied alike to the measurement and every replay: its z is then the evidence in
+// the direction where the two differ, weighted by the noise's own spectrum and with the part
+// of each output's noise that the others predict taken out.
+//
+// Why joint: in closed loop the sensor noise, the process force and the current noise are fed
+// around the loop, so the residuals of x, i1 and i2 share most of their noise (the nominal
+// NRMSE is 0.5-0.9 from noise alone on the independent records). Two rivals that rescale the
+// loop alike (a heavier rotor and a sensor gain: both scale the loop gain by about m/(m+dm)
+// above the negative-stiffness corner sqrt(ks/m)/2pi = 140 Hz, and differ only below it, where
+// the loop gain is high and the closed loop hides the plant; a sensor delay and an eddy-current
+// lag: the same phase at the loop's crossover, they differ by the lag's magnitude
+// 1/sqrt(1 + (w tau)^2) at high frequency) differ by little against that noise per output, but
+// the noise is predictable from the other outputs, the difference is not. Whitened per output
+// alone, the right one of each pair beat the wrong one on the confusion table's draws by z
+// -0.4-2.4 (rotor mass / sensor gain: 0.9-1.9 either way; eddy current / sensor delay under
+// PID: the wrong one ahead, 2.0 against 1.3); jointly, by z 2.8-4.0 and 5.5-19.9 with the wrong
+// one over the right at most 2.5 (tests/diagnostics/audit_confusion_slow_test.cpp). Whitening
+// per output already mattered: on the independent records the right one of amplifier gain and
+// coil resistance beat the wrong one by z 0.5-4.7 unwhitened, by z 5.5-16 whitened, the wrong
+// one the right by at most 1.9. The whitening filter changes the test's power, not its
 // validity (the improvement test estimates the remaining noise covariance itself).
 //
 // A beats B when z(A over B) > margin and z(A over B) > z(B over A). Under "B is right" the
