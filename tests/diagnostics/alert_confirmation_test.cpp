@@ -252,6 +252,42 @@ TEST(AlertConfirmation, AStepIsRaisedTwoWindowsLaterAndClearedAtOnce) {
   EXPECT_DOUBLE_EQ(confirmed[1].time, at_once[1].time);
 }
 
+// The window of the first alert of R1 rising by 0.01 % per window (0.02 sigma) from window 100,
+// and that alert (DiagnosticsEngine.SlowRiseWarnsEarly with the daemon's settings).
+std::pair<std::size_t, Alert> slow_rise_warning(std::size_t confirm_windows) {
+  TrendStore store(fresh_store_path("confirmation_rise"));
+  DiagnosticsEngine engine(store, daemon_config(confirm_windows));
+  SyntheticPlant plant("bearing-A", 23, 0.005);
+  plant.change = [](const std::string& p, std::size_t n) {
+    return p == "R1" && n >= 100 ? 1e-4 * static_cast<double>(n - 100) : 0.0;
+  };
+  for (std::size_t n = 0; n < 700; ++n) {
+    const std::vector<Alert> alerts = engine.process(plant.window(n));
+    if (!alerts.empty()) return {n, alerts.front()};
+  }
+  return {700, Alert{}};
+}
+
+// A real slow drift is still a WARN naming coil 1 when confirmed: 2 to 10 windows later (each
+// confirming window must lie nearer the drifted level than the baseline), below +1.5 %.
+TEST(AlertConfirmation, ASlowDriftStillWarns) {
+  const auto [at_once, first] = slow_rise_warning(1);
+  const auto [confirmed, warning] = slow_rise_warning(3);
+  RecordProperty("warned_at_once", std::to_string(at_once));
+  RecordProperty("warned_confirmed", std::to_string(confirmed));
+  ASSERT_LT(at_once, 700u);
+  ASSERT_LT(confirmed, 700u);
+  EXPECT_GE(confirmed, at_once + 2);
+  EXPECT_LE(confirmed, at_once + 10);
+  EXPECT_LT(1e-4 * static_cast<double>(confirmed - 100), 0.015);
+  for (const Alert* a : {&first, &warning}) {
+    EXPECT_EQ(a->level, Level::warn) << a->message;
+    EXPECT_EQ(a->parameter, "R1");
+    EXPECT_EQ(a->fault, "coil_resistance");
+    EXPECT_EQ(a->channel, 1);
+  }
+}
+
 TEST(AlertConfirmation, RefusesZeroWindows) {
   AlertPolicy p;
   p.confirm_windows = 0;
