@@ -17,6 +17,9 @@
 // raised "R1 5 % below baseline" on a bearing that never changed). The last
 // kRememberedWindows windows of each plant are remembered.
 //
+// A WARN or ERROR is raised once confirm_windows judged windows in a row agree on it
+// (alert_policy.hpp, "Confirmation"; 1 by default: at once).
+//
 // Not thread-safe: one thread at a time.
 #include <cstddef>
 #include <deque>
@@ -95,8 +98,14 @@ class DiagnosticsEngine {
     Level level = Level::ok;  // as last reported (OK until an alert says otherwise)
     std::string fault;
     std::optional<int> channel;
-    Level episode = Level::ok;  // highest level since last OK
-    bool unconverged = false;   // its last estimate was not judged (MonitorConfig::unconverged_sigma_ratio)
+    Level episode = Level::ok;          // highest level raised since last OK
+    bool unconverged = false;           // its last estimate was not judged (MonitorConfig::unconverged_sigma_ratio)
+    std::optional<double> judged_time;  // of its last estimate given to the detectors
+    // Confirmation (AlertPolicy::confirm_windows): the cause of a WARN or ERROR the last judged
+    // windows named and how many in a row named it with their estimate on its side.
+    std::string pending_fault;
+    std::optional<int> pending_channel;
+    std::size_t pending_windows = 0;
   };
   using Key = std::pair<std::string, std::string>;  // plant id, parameter
   using SeriesMap = std::map<Key, Series>;
@@ -107,6 +116,10 @@ class DiagnosticsEngine {
   void mark_stale(SeriesMap& map, const std::optional<std::string>& plant_id, double now,
                   std::vector<Alert>& alerts) const;
   void evaluate(SeriesMap& map, const std::string& plant_id, double time, std::vector<Alert>& alerts) const;
+  // Counts a judged window of `s` towards confirming a WARN or ERROR of `fault`, `channel` at
+  // the detector's `level` (value units), or breaks the run; true once confirmed.
+  bool confirmed(Series& s, Level candidate, const std::string& fault, std::optional<int> channel, double level,
+                 double time) const;
 
   // Hashes of the estimates of a plant's recent windows, oldest first.
   struct SeenWindows {

@@ -38,6 +38,7 @@ void AlertPolicy::validate() const {
     throw Error("alert policy: warn_fraction must be at least 0 and below error_fraction, got " +
                 std::to_string(warn_fraction));
   if (persist_windows < 1) throw Error("alert policy: persist_windows must be at least 1");
+  if (confirm_windows < 1) throw Error("alert policy: confirm_windows must be at least 1");
   if (!(stale_timeout > 0.0) || !std::isfinite(stale_timeout))
     throw Error("alert policy: stale_timeout must be positive and finite, got " + std::to_string(stale_timeout));
 }

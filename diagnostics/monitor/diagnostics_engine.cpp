@@ -99,8 +99,11 @@ std::vector<Alert> DiagnosticsEngine::process(std::span<const EstimateWindow> wi
       const bool converged = s.monitor.converged(e.sigma);
       if (!repeated && converged != !s.unconverged) notes.push_back(convergence_note(w.plant_id, e, s, converged));
       if (!repeated) s.unconverged = !converged;
-      if (!repeated && converged && s.monitor.update(w.time, e.value, e.sigma))
-        batch.baselines.push_back({w.plant_id, e.parameter, *s.monitor.baseline(), w.time});
+      if (!repeated && converged) {
+        if (s.monitor.update(w.time, e.value, e.sigma))
+          batch.baselines.push_back({w.plant_id, e.parameter, *s.monitor.baseline(), w.time});
+        s.judged_time = w.time;
+      }
       s.last_time = w.time;
       s.last_value = e.value;
     }
@@ -203,8 +206,10 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
       fault = isolation->fault;
       channel = isolation->channel;
     }
-    s.episode = c.level == Level::ok ? Level::ok : std::max(s.episode, c.level);
+    const bool confirmed_now = confirmed(s, c.level, fault, channel, c.status.level, time);
     if (c.level == s.level && fault == s.fault && channel == s.channel) continue;
+    if (c.level != Level::ok && !confirmed_now) continue;  // the last alert holds meanwhile
+    s.episode = c.level == Level::ok ? Level::ok : std::max(s.episode, c.level);
     const bool changed = isolation != isolations.end();
     alerts.push_back(make_alert(time, plant_id, c.key->second, c.level, fault, channel,
                                 changed ? c.status.level : s.last_value, s.monitor.baseline(),
@@ -215,6 +220,30 @@ void DiagnosticsEngine::evaluate(SeriesMap& map, const std::string& plant_id, do
     s.fault = std::move(fault);
     s.channel = channel;
   }
+}
+
+bool DiagnosticsEngine::confirmed(Series& s, Level candidate, const std::string& fault, std::optional<int> channel,
+                                  double level, double time) const {
+  if (candidate != Level::warn && candidate != Level::error) {
+    s.pending_windows = 0;
+    return true;
+  }
+  if (s.judged_time == time) {
+    // On the changed side: nearer the detector's level than the baseline mean.
+    const double mean = s.monitor.baseline()->mean;
+    const bool on_its_side = (s.last_value - 0.5 * (mean + level)) * (level - mean) > 0.0;
+    if (!on_its_side) {
+      s.pending_windows = 0;
+    } else if (s.pending_windows > 0 && s.pending_fault == fault && s.pending_channel == channel) {
+      ++s.pending_windows;
+    } else {
+      s.pending_fault = fault;
+      s.pending_channel = channel;
+      s.pending_windows = 1;
+    }
+  }
+  return config_.policy.confirm_windows == 1 || (s.pending_windows >= config_.policy.confirm_windows &&
+                                                 s.pending_fault == fault && s.pending_channel == channel);
 }
 
 void DiagnosticsEngine::set_baseline(const std::string& plant_id, const std::string& parameter,

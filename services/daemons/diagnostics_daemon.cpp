@@ -39,18 +39,26 @@ constexpr double kDay = 86400.0;
 // The identifier daemon's estimator is recursive (rpem): its first windows after a restart or
 // a swap rest on little information, and their sigma says so (diag::MonitorConfig).
 constexpr double kRecursiveUnconvergedSigmaRatio = 2.0;
+// Its first window after an abrupt plant change (a fault, a swap) moves parameters no fault
+// moves (kr1 +36 %, kw1 -20 % at the stack's swap to R1 +20 %): a change is named once 3
+// judged windows in a row agree on it, 1 s at the stack's 0.5 s windows (alert_policy.hpp).
+constexpr int kRecursiveConfirmWindows = 3;
 
 DiagnosticsConfig diagnostics_config(const nlohmann::json& j) {
-  reject_unknown_keys(
-      j, "diagnostics config",
-      {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "warn_fraction", "stale_timeout",
-       "silence", "keep_windows_days", "aggregate_bucket", "keep_days", "retention_period", "unconverged_sigma_ratio"});
+  reject_unknown_keys(j, "diagnostics config",
+                      {"plants", "store", "learning_windows", "persist_windows", "error_fraction", "warn_fraction",
+                       "stale_timeout", "silence", "keep_windows_days", "aggregate_bucket", "keep_days",
+                       "retention_period", "unconverged_sigma_ratio", "confirm_windows"});
   DiagnosticsConfig c;
   c.store = config_value(j, "store", c.store);
   c.engine.monitor.learning_windows = std::size_t(config_value(j, "learning_windows", 50));
   c.engine.monitor.unconverged_sigma_ratio =
       config_value(j, "unconverged_sigma_ratio", kRecursiveUnconvergedSigmaRatio);
   c.engine.policy.persist_windows = std::size_t(config_value(j, "persist_windows", 100));
+  const int confirm = config_value(j, "confirm_windows", kRecursiveConfirmWindows);
+  if (confirm < 1)
+    throw Error("diagnostics config: confirm_windows must be at least 1, got " + std::to_string(confirm));
+  c.engine.policy.confirm_windows = std::size_t(confirm);
   c.engine.policy.error_fraction = config_value(j, "error_fraction", c.engine.policy.error_fraction);
   c.engine.policy.warn_fraction = config_value(j, "warn_fraction", c.engine.policy.warn_fraction);
   c.engine.policy.stale_timeout = config_value(j, "stale_timeout", c.engine.policy.stale_timeout);

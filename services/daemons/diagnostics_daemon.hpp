@@ -23,6 +23,8 @@
 //    "unconverged_sigma_ratio": 2 (an estimate whose sigma is over this many times the
 //    baseline's has not converged: stored, not judged, logged "P: R1 not judged: sigma ..."
 //    and "P: R1 judged again ..."; diag::MonitorConfig),
+//    "confirm_windows": 3 (a WARN or ERROR, or a new cause of one, is raised once this many
+//    judged windows in a row agree on it; diag::AlertPolicy, "Confirmation"),
 //    "error_fraction": 0.10, "warn_fraction": 0.005 (smaller changes are not alerted),
 //    "stale_timeout": 30 (s of plant time), "silence": 3 (s wall),
 //    retention of the trend store (diag::RetentionPolicy): "keep_windows_days": 7 (per-window

@@ -2,10 +2,10 @@
 // of tests/integration/scenarios/noisy-bearing.json (0.1 um on x, 1 mA on each current, 1 V
 // PRBS, 10 s records), rpem published every 0.5 s (each record's first 0.25 s dropped), the deploy
 // diagnostics settings. The source is swapped to the same bearing with R1 +10 %
-// (noisy-coil1-hot10.json): the ERROR naming coil 1 resistance must come within 10 s of plant
-// time after the swap, and no alert but OK before it. Slow label: it needs the identifier to
-// keep up with real time at half speed, which pem (~0.6 s of CPU per 0.5 s window) did not on
-// a two-core machine shared with eight builds (22 windows in 150 s; STALE alerts).
+// (noisy-coil1-hot10.json), or with kw2 +10 % (noisy-amp2-strong10.json): the ERROR naming that
+// element must come within 10 s of plant time after the swap, and no alert but OK before it. Slow label: it needs the
+// identifier to keep up with real time at half speed, which pem (~0.6 s of CPU per 0.5 s window) did not on a two-core
+// machine shared with eight builds (22 windows in 150 s; STALE alerts).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -49,11 +49,14 @@ void configure_noisy_stack(const Stack& stack, double speed) {
   std::ofstream(stack.dir() / "diagnostics.json") << config;
 }
 
-TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTime) {
-  Stack stack("stack_noise_coil1", 195);
+// The stack on the nominal bearing for the baseline (20 windows of 0.5 s) and 20 windows after
+// it, then swapped to `scenario`: the ERROR on `parameter` naming `cause` within 10 s of plant
+// time after the swap, and no alert but OK before it, every one after it naming `cause`.
+void fault_is_an_error_within_ten_seconds(const std::string& name, int domain, const std::string& scenario,
+                                          const std::string& parameter, const std::string& cause) {
+  Stack stack(name, domain);
   configure_noisy_stack(stack, 0.5);
   for (const char* d : {"diagnostics", "identifier", "plant"}) stack.start(d);
-  // The baseline (20 windows of 0.5 s) and 20 nominal windows after it before the fault.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(150);
   std::size_t stored = 0;
   while (stored < 40 && std::chrono::steady_clock::now() < deadline) {
@@ -62,26 +65,38 @@ TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTim
       stored = diag::TrendStore(stack.store(), diag::OpenMode::read_only).history("bearing-1", "R1").size();
   }
   ASSERT_GE(stored, 40u) << stack.log("identifier") << stack.log("diagnostics");
-  const CommandResult swap = stack.ambid("source set sim " + scenarios + "noisy-coil1-hot10.json");
+  const CommandResult swap = stack.ambid("source set sim " + scenarios + scenario);
   ASSERT_EQ(swap.status, 0) << swap.output;
   const double change = number_after(swap.output, "plant time ");
   ASSERT_TRUE(std::isfinite(change)) << swap.output;
-  const CommandResult error = stack.ambid("alerts --until ERROR:R1 --timeout 60");
+  const CommandResult error = stack.ambid("alerts --until ERROR:" + parameter + " --timeout 60");
   ASSERT_EQ(error.status, 0) << error.output << stack.log("diagnostics");
-  const auto line = error.output.find("ERROR  bearing-1  R1  coil_resistance (channel 1)");
+  const auto line = error.output.find("ERROR  bearing-1  " + parameter + "  " + cause);
   ASSERT_NE(line, std::string::npos) << error.output;
   const double detected = number_after(error.output, "t=", error.output.rfind('\n', line) + 1);
-  RecordProperty("detection_delay_plant_s", std::to_string(detected - change));
+  ::testing::Test::RecordProperty("detection_delay_plant_s", std::to_string(detected - change));
   EXPECT_GT(detected, change) << error.output;
   EXPECT_LE(detected - change, 10.0) << "swap at plant time " << change << " s\n" << error.output;
-  // Before the fault: nothing but OK; after it: every alert names coil 1 resistance.
   const CommandResult all = stack.ambid("alerts --wait 1");
   std::istringstream lines(all.output);
   for (std::string l; std::getline(lines, l);) {
     if (l.rfind("t=", 0) != 0 || l.find("  OK   ") != std::string::npos) continue;
     EXPECT_GT(number_after(l, "t="), change) << l;
-    EXPECT_THAT(l, HasSubstr("coil_resistance (channel 1)"));
+    EXPECT_THAT(l, HasSubstr(cause));
   }
+}
+
+// R1 +10 % (noisy-coil1-hot10.json). Measured with the daemon's 3-window confirmation: the
+// ERROR 3.25 s of plant time after the swap (3 runs, 2026-12-03; 2.2 s before it).
+TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTime) {
+  fault_is_an_error_within_ten_seconds("stack_noise_coil1", 195, "noisy-coil1-hot10.json", "R1",
+                                       "coil_resistance (channel 1)");
+}
+
+// kw2 +10 % (noisy-amp2-strong10.json): the other element and the other channel. Domain 72.
+TEST(StackAtSensorNoise, ATenPercentAmplifierFaultIsAnErrorWithinTenSecondsOfPlantTime) {
+  fault_is_an_error_within_ten_seconds("stack_noise_amp2", 72, "noisy-amp2-strong10.json", "kw2",
+                                       "amplifier_gain (channel 2)");
 }
 
 // Issue 18 item 8: a nominal stack left running raised a WARN ("rotor mass ... drifting -3.9 %
@@ -91,7 +106,12 @@ TEST(StackAtSensorNoise, ATenPercentCoilFaultIsAnErrorWithinTenSecondsOfPlantTim
 // identified. Disabled until rpem's bias is fixed: on the rpem stack (2026-12-03) R1 step
 // ERRORs of +2 % from 47 s of plant time on (the default carry 0.1 moves R1 from the nominal
 // start to +1.5-2 % within ~30 s, after the baseline's first 10 s; README "What the service
-// survives"). Run it with --gtest_also_run_disabled_tests.
+// survives"). Run it with --gtest_also_run_disabled_tests. With alerts confirmed over 3 windows
+// (2026-12-03, 17:35 UTC): 10 WARN/ERROR from 76.7 s on, every one an R1 or R2 step of +1.6 to
+// +2.2 % ("coil 1" or "both coils", the ERRORs persisting 20 windows) or ks -2.5 % with them; no
+// drift WARN, nothing from a transient. R1 per 30 s of plant time against its baseline (17.477,
+// learned in the first 10 s; truth unchanged): +0.6 % in the first 30 s, then +1.5 to +2.2 %:
+// rpem's bias, not the detectors.
 TEST(StackAtSensorNoise, DISABLED_ANominalBearingRaisesNoAlertInFiveMinutesOfPlantTime) {
   Stack stack("stack_noise_nominal", 179);
   configure_noisy_stack(stack, 10.0);

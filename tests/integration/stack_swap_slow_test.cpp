@@ -5,7 +5,10 @@
 //   every WARN or ERROR names coil 1 resistance (the fault moves the bias currents, so ks, kr1,
 //   kr2 truly move too: -8.7 %, -4.5 %); before the swap nothing but OK. Before the first
 //   estimates after a restart were held back (amb1dof_recursive_pem.hpp, restart()) the first
-//   window after this swap read ks -50 % and raised a false ERROR "rotor mass".
+//   window after this swap read ks -50 % and raised a false ERROR "rotor mass"; after it, that
+//   window read kr1 +36 %, kw1 -20 % (sigmas 1.6-1.8x the baseline's, judged) and raised a false
+//   ERROR "rotor mass" on kr1, then "coil 1 force factor", in 4 runs of 5, until alerts were
+//   confirmed over 3 windows (diagnostics' confirm_windows, alert_policy.hpp).
 // - recordings of three controllers (lqr observer, pid, lead-lag) of the same bearing at the
 //   stack's noise replayed with swaps between them: no WARN or ERROR (estimates that have not
 //   converged after a swap are not judged: their sigma, diagnostics' unconverged_sigma_ratio).
