@@ -107,5 +107,44 @@ TEST(MaglevRigIdentify, PhysicalParametersAtTheRigsSampleTimes) {
   }
 }
 
+// The unstable pole of the linearisation at (x, i) of a law with exponents n_i, n_x whose force
+// there is `weight` times m g, back-EMF constant Ke: the positive eigenvalue of
+// [0 1 0; n_x g/x w 0 -n_i g/i w; 0 n_i Ke i^(n_i-1)/(x^n_x L) -R/L].
+double pole_at(double n_i, double n_x, double weight, double Ke, double R, double L, double x, double i) {
+  const double g = 9.81;
+  Eigen::Matrix3d A;
+  A << 0, 1, 0, n_x * g / x * weight, 0, -n_i * g / i * weight, 0,
+      n_i * Ke * std::pow(i, n_i - 1) / (std::pow(x, n_x) * L), -R / L;
+  return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().real().maxCoeff();
+}
+
+// The 13 mm level is where `frf` per level has no fit: the loop's command there (2.6 V) swings
+// onto the 0 V clamp in bursts (11-19 clamped samples of its ~345 settled ones over seeds 1-7),
+// so that no two clamp-free Welch segments of 128 remain, even placed within the clamp-free
+// stretches (0-2). The grey-box fit is of the nonlinear model over all levels and needs no
+// exogenous segments: linearised at the 13 mm level's means its unstable pole is the truth's
+// linearisation there within 0.1 % (seeds 1-7, 3.25 ms; sigma of the fit's pole ~0.04 %).
+TEST(MaglevRigIdentify, GreyboxHoldsTheThirteenMillimetreLevelThatFrfCannotFit) {
+  const sim::MaglevParameters p = truth();
+  const Experiment e =
+      test_support::maglev_record(p, sim::MaglevRig{}, test_support::maglev_run_options(3.25e-3, 3000, 7));
+  const Model m = greybox(e);
+  // The second reference level (13 mm), its second half: settled.
+  const auto per_level = Eigen::Index(std::llround(1.5 / e.sample_time));
+  const Eigen::Index begin = per_level + per_level / 2, n = per_level - per_level / 2;
+  const double x = e.y.col(0).segment(begin, n).mean(), i = e.y.col(1).segment(begin, n).mean();
+  ASSERT_NEAR(x, 0.013, 1e-4);
+  const double x0 = e.operating_point.at("x"), i0 = e.operating_point.at("i");
+  const auto& v = m.physical;
+  const double fitted_weight = v.at("rho") * std::pow(i / i0, v.at("n_i")) * std::pow(x0 / x, v.at("n_x"));
+  const double fitted = pole_at(v.at("n_i"), v.at("n_x"), fitted_weight, v.at("Ke"), v.at("R"), v.at("L"), x, i);
+  const double true_weight = p.Km * std::pow(i, p.n_i) / (p.m * p.g * std::pow(x, p.n_x));
+  const double truth_there = pole_at(p.n_i, p.n_x, true_weight, p.Ke, p.R, p.L, x, i);
+  std::printf("13 mm level: unstable pole %.3f (truth %.3f, %+.3f %%)\n", fitted, truth_there,
+              100 * (fitted / truth_there - 1));
+  EXPECT_NEAR(fitted / truth_there, 1.0, 0.002);
+  EXPECT_GT(truth_there / true_unstable_pole(p, x0, i0), 1.02);  // a level of its own: 3 % above 14 mm's
+}
+
 }  // namespace maglev_rig_identify_test
 }  // namespace ambid
