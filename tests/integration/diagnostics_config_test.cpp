@@ -12,8 +12,8 @@ namespace diagnostics_config_test {
 
 TEST(DiagnosticsConfig, RefusesConfirmingOverNoWindowAtStart) {
   const auto dir = cli_test::fresh_dir("diagnostics_confirm_windows");
-  std::ofstream(dir / "diagnostics.json") << R"({"store": ")" << (dir / "trend.sqlite").string()
-                                          << R"(", "confirm_windows": 0})";
+  std::ofstream(dir / "diagnostics.json")
+      << R"({"store": ")" << (dir / "trend.sqlite").string() << R"(", "confirm_windows": 0})";
   const cli_test::CommandResult r = cli_test::run_ambid("daemon diagnostics --dds cyclone --domain 73 --config " +
                                                         (dir / "diagnostics.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
