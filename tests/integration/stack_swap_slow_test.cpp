@@ -87,7 +87,13 @@ TEST(StackSwap, TheMainJobsHotCoilIsAnErrorOnCoilOneOnly) {
   ASSERT_TRUE(std::isfinite(swapped)) << swap.output;
   const CommandResult error = stack.ambid("alerts --until ERROR:R1 --timeout 60");
   ASSERT_EQ(error.status, 0) << error.output << stack.log("diagnostics");
-  EXPECT_THAT(error.output, HasSubstr("ERROR  bearing-1  R1  coil_resistance (channel 1)"));
+  const auto line = error.output.find("ERROR  bearing-1  R1  coil_resistance (channel 1)");
+  ASSERT_NE(line, std::string::npos) << error.output;
+  // Within 10 s of plant time (issue 13); measured 2.75 s (2 runs) with the 3-window confirmation.
+  const double detected = std::stod(error.output.substr(error.output.rfind("t=", line) + 2));
+  RecordProperty("detection_delay_plant_s", std::to_string(detected - swapped));
+  EXPECT_GT(detected, swapped) << error.output;
+  EXPECT_LE(detected - swapped, 10.0) << "swap at plant time " << swapped << " s\n" << error.output;
   std::this_thread::sleep_for(std::chrono::seconds(3));  // 6 windows more
   const std::vector<std::string> lines = raised(stack);
   for (const std::string& l : lines) {
