@@ -115,7 +115,7 @@ double pole_at(double n_i, double n_x, double weight, double Ke, double R, doubl
   Eigen::Matrix3d A;
   A << 0, 1, 0, n_x * g / x * weight, 0, -n_i * g / i * weight, 0,
       n_i * Ke * std::pow(i, n_i - 1) / (std::pow(x, n_x) * L), -R / L;
-  return Eigen::EigenSolver<Eigen::Matrix3d>(A).eigenvalues().real().maxCoeff();
+  return linalg::eigenvalues(A).real().maxCoeff();
 }
 
 // The 13 mm level is where `frf` per level has no fit: the loop's command there (2.6 V) swings
