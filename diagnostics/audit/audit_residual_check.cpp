@@ -16,6 +16,28 @@ namespace ambid::diag {
 namespace {
 
 constexpr Eigen::Index kMinWindows = 16;
+constexpr Eigen::Index kMinReplicasForSpread = 3;  // null replicas that measure the law's spread
+
+// P(T > t) for Student's t with `dof` >= 1 degrees of freedom: A(t | dof) = P(|T| <= t) in
+// closed form (Abramowitz & Stegun 26.7.3-4, theta = atan(t / sqrt(dof))).
+double student_t_upper_tail(double t, int dof) {
+  if (t < 0.0) return 1.0 - student_t_upper_tail(-t, dof);
+  const double theta = std::atan(t / std::sqrt(double(dof))), c2 = std::cos(theta) * std::cos(theta);
+  double series = 0.0, term = 1.0;
+  if (dof % 2 == 0) {
+    for (int k = 2; k <= dof; k += 2) {  // 1 + (1/2) c^2 + (1 3)/(2 4) c^4 + ... up to c^(dof-2)
+      series += term;
+      term *= c2 * double(k - 1) / double(k);
+    }
+    return 0.5 * (1.0 - std::sin(theta) * series);
+  }
+  for (int k = 3; k <= dof; k += 2) {  // cos + (2/3) cos^3 + ... up to cos^(dof-2)
+    series += term;
+    term *= c2 * double(k - 1) / double(k);
+  }
+  const double inside = 2.0 / std::numbers::pi * (theta + std::sin(theta) * std::cos(theta) * series);
+  return 0.5 * (1.0 - inside);
+}
 
 double upper_tail_probability(double z) { return 0.5 * std::erfc(z / std::sqrt(2.0)); }
 
@@ -121,46 +143,86 @@ ResidualCheck residual_check(const Eigen::MatrixXd& residual, const Eigen::Matri
     Eigen::MatrixXcd Srr_pinv;
     double rank;
   };
-  std::vector<Bin> used;
-  for (Eigen::Index b : excited) {
-    Eigen::MatrixXcd Srr = Eigen::MatrixXcd::Zero(p, p);
-    for (const auto& s : spectra) {
-      const Eigen::VectorXcd rb = s.block(b, q, 1, p).transpose();
-      Srr += rb * rb.adjoint();
-    }
-    const linalg::HermitianEigen eig = linalg::hermitian_eigen(Srr);
-    const double largest = eig.values.maxCoeff();
-    Eigen::MatrixXcd pinv = Eigen::MatrixXcd::Zero(p, p);
-    double rank = 0.0;
-    for (Eigen::Index k = 0; k < p; ++k)
-      if (eig.values[k] > 1e-6 * largest) {
-        pinv += eig.vectors.col(k) * eig.vectors.col(k).adjoint() / eig.values[k];
-        rank += 1.0;
+  const auto bins_of = [&](const std::vector<Eigen::MatrixXcd>& s) {
+    std::vector<Bin> out;
+    for (Eigen::Index b : excited) {
+      Eigen::MatrixXcd Srr = Eigen::MatrixXcd::Zero(p, p);
+      for (const auto& w : s) {
+        const Eigen::VectorXcd rb = w.block(b, q, 1, p).transpose();
+        Srr += rb * rb.adjoint();
       }
-    if (rank > 0.0 && rank < Kd) used.push_back({b, pinv, rank});
-  }
-  c.bins = Eigen::Index(used.size());
-  for (Eigen::Index j = 0; j < q; ++j) {
-    double sum = 0.0, mean = 0.0, variance = 0.0;
-    for (const Bin& bin : used) {
-      Eigen::VectorXcd Sre = cross(spectra, bin.b, j);
+      const linalg::HermitianEigen eig = linalg::hermitian_eigen(Srr);
+      const double largest = eig.values.maxCoeff();
+      Eigen::MatrixXcd pinv = Eigen::MatrixXcd::Zero(p, p);
+      double rank = 0.0;
+      for (Eigen::Index k = 0; k < p; ++k)
+        if (eig.values[k] > 1e-6 * largest) {
+          pinv += eig.vectors.col(k) * eig.vectors.col(k).adjoint() / eig.values[k];
+          rank += 1.0;
+        }
+      if (rank > 0.0 && rank < Kd) out.push_back({b, pinv, rank});
+    }
+    return out;
+  };
+  // T of output j of the windows' spectra `s` (its bins `of_bins`), the mean cross-spectrum of
+  // `nulls` subtracted.
+  using Spectra = std::vector<Eigen::MatrixXcd>;
+  const auto statistic = [&](const Spectra& s, const std::vector<Bin>& of_bins,
+                             const std::vector<const Spectra*>& nulls, Eigen::Index j) {
+    double sum = 0.0;
+    for (const Bin& bin : of_bins) {
+      Eigen::VectorXcd Sre = cross(s, bin.b, j);
       double See = 0.0;
-      for (const auto& s : spectra) See += std::norm(s(bin.b, j));
+      for (const auto& w : s) See += std::norm(w(bin.b, j));
       if (!(See > 0.0)) continue;
-      if (!replica_spectra.empty()) {
+      if (!nulls.empty()) {
         Eigen::VectorXcd expected = Eigen::VectorXcd::Zero(p);
-        for (const auto& s : replica_spectra) expected += cross(s, bin.b, j);
-        Sre -= expected / double(replica_spectra.size());
+        for (const Spectra* n : nulls) expected += cross(*n, bin.b, j);
+        Sre -= expected / double(nulls.size());
       }
       // Sre^H Srr^+ Sre / See ~ Beta(rank, K - rank) under noise independent of r.
       sum += std::clamp(Sre.dot(bin.Srr_pinv * Sre).real() / See, 0.0, 1.0);
+    }
+    return sum;
+  };
+  const std::vector<Bin> used = bins_of(spectra);
+  c.bins = Eigen::Index(used.size());
+  std::vector<const Spectra*> all_nulls;
+  std::vector<std::vector<Bin>> replica_bins;
+  for (const Spectra& s : replica_spectra) {
+    all_nulls.push_back(&s);
+    replica_bins.push_back(bins_of(s));
+  }
+  const auto M = std::ssize(replica_spectra);
+  for (Eigen::Index j = 0; j < q; ++j) {
+    double mean = 0.0, variance = 0.0;
+    for (const Bin& bin : used) {
+      double See = 0.0;
+      for (const auto& s : spectra) See += std::norm(s(bin.b, j));
+      if (!(See > 0.0)) continue;
       mean += inflation * bin.rank / Kd;
       variance += inflation * inflation * bin.rank * (Kd - bin.rank) / (Kd * Kd * (Kd + 1.0));
     }
-    if (mean > 0.0) {
-      c.coherence_mean[j] = sum / double(used.size());
-      c.coherence_z[j] = scaled_chi_square_z(sum, mean, variance);
-      c.coherence_p[j] = upper_tail_probability(c.coherence_z[j]);
+    if (!(mean > 0.0)) continue;
+    const double sum = statistic(spectra, used, all_nulls, j);
+    c.coherence_mean[j] = sum / double(used.size());
+    c.coherence_z[j] = scaled_chi_square_z(sum, mean, variance);
+    c.coherence_p[j] = upper_tail_probability(c.coherence_z[j]);
+    if (M < kMinReplicasForSpread) continue;
+    // The replicas' own spread: each checked against the others' mean.
+    Eigen::VectorXd left_one_out(M);
+    for (Eigen::Index m = 0; m < M; ++m) {
+      std::vector<const Spectra*> others;
+      for (Eigen::Index n = 0; n < M; ++n)
+        if (n != m) others.push_back(all_nulls[std::size_t(n)]);
+      left_one_out[m] = statistic(replica_spectra[std::size_t(m)], replica_bins[std::size_t(m)], others, j);
+    }
+    const double spread = std::sqrt((left_one_out.array() - left_one_out.mean()).square().sum() / double(M - 1));
+    if (!(spread > 0.0)) continue;
+    const double z = (sum - left_one_out.mean()) / spread, p_spread = student_t_upper_tail(z, int(M - 1));
+    if (p_spread > c.coherence_p[j]) {
+      c.coherence_z[j] = z;
+      c.coherence_p[j] = p_spread;
     }
   }
   c.p_value = std::min(1.0, c.coherence_p.minCoeff() * double(q));

@@ -81,6 +81,36 @@ TEST(AuditResidualCheckReplicas, AResidualDrivenByRStillFailsIt) {
   EXPECT_LT(c.p_value, 1e-4);
 }
 
+// A record of the same mechanism whose residual also holds r through a gain that differs from
+// record to record (drawn anew for each, mean zero): noise, not a model error, but one that
+// moves the whole record's coherence at once, which the law of independent windows does not
+// allow for. The replicas' own spread does.
+NullReplica with_random_gain(NullReplica record, std::mt19937_64& rng) {
+  std::normal_distribution<double> gain(0.0, 1.2e-6);  // m/V, a few percent of the rounding's rms
+  const double g = gain(rng);
+  for (Eigen::Index k = 0; k < kSamples; ++k) record.residual(k, 0) += g * record.excitation(k, 0);
+  return record;
+}
+
+TEST(AuditResidualCheckReplicas, TheReplicasSpreadWidensTheNullWhereTheWindowsAreNotIndependent) {
+  std::mt19937_64 rng(11);
+  constexpr int kTrials = 200;
+  constexpr double kAlpha = 0.05;
+  int rejected = 0, rejected_one_replica_pair = 0;
+  for (int t = 0; t < kTrials; ++t) {
+    const Eigen::VectorXd w = excitation(rng);
+    const NullReplica record = with_random_gain(rounded_record(w, rng), rng);
+    std::vector<NullReplica> replicas;
+    for (int m = 0; m < 8; ++m) replicas.push_back(with_random_gain(rounded_record(w, rng), rng));
+    rejected += residual_check(record.residual, record.excitation, kAlpha, {}, replicas).consistent ? 0 : 1;
+    // Two replicas: too few to measure a spread, the law of independent windows alone.
+    const std::vector<NullReplica> two(replicas.begin(), replicas.begin() + 2);
+    rejected_one_replica_pair += residual_check(record.residual, record.excitation, kAlpha, {}, two).consistent ? 0 : 1;
+  }
+  EXPECT_GE(rejected_one_replica_pair, 40);  // 10 expected at 5 % if the windows were independent
+  EXPECT_LE(rejected, 18);                   // 19 or more: < 0.5 % if the rate is 5 %
+}
+
 TEST(AuditResidualCheckReplicas, AReplicaOfOtherSizeIsAnError) {
   std::mt19937_64 rng(3);
   const Eigen::VectorXd w = excitation(rng);

@@ -41,14 +41,16 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 // Measured 2026-12-03 (seed 11), cause and cut (baseline / extended NRMSE):
 //   none: none at every rate. force_law 5.59, 5.22, 15.15, 5.63 (every rate).
 //   coil_resistance 1.62, 1.43, 1.89 at 1.3, 1.5, 3.25 ms. amplifier_gain 1.97, 2.43 at 3.25, 4 ms.
-//   sensor_gain 1.12, 1.15 at 1.3, 1.5 ms. sensor_offset 1.26 at 1.5 ms.
+//   sensor_gain 1.12, 1.15 at 1.3, 1.5 ms.
 //   sensor_nonlinearity 2.54, 2.11, 6.75, 6.50 (every rate). harmonic_disturbance 4.37, 3.31, 3.46 at
 //   1.5, 3.25, 4 ms.
 //   actuator_quantisation (0.35 V) 1.99, 1.92, 2.03, 2.30 (every rate; step 0.35 read
 //   from the current; at 1.3 and 1.5 ms named since the replicas' DAC rounds the command as
 //   logged, MaglevExtended: the fitted 0.3502 put its edges between the logged 0.01 V, and the
 //   replicas' misrounded samples, which the record cannot have, failed its residual check).
-//   sensor_delay 3.38 at 3.25 ms (one sample, on the board that survives it: audit() below).
+//   sensor_delay 2.60 at 1.5 ms (since the residual check measures its null's spread from the
+//   rounding replicas, audit_residual_check.hpp) and 3.38 at 3.25 ms (one sample, on the board
+//   that survives it: audit() below).
 // Open, with what the audit says instead:
 // - 4 ms (steps of 0.5 mm between 14 and 16 mm, audit() below): coil_resistance reads as
 //   amplifier_gain (cut 1.98) and sensor_offset and sensor_gain as force_law (1.28, 1.33). With
@@ -59,14 +61,13 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 // - actuator_quantisation at 1.3 and 1.5 ms: named, but the cut is 1.99 and 1.92: the extended
 //   NRMSE is at the clean record's (0.069, 0.075), the replay's floor (its command leaves the
 //   logged one by 0.15 V rms where the model leaves the logged gap's 0.01 mm band).
-// - sensor_delay at 1.3 and 1.5 ms: "unexplained" (the delay found, 0.99 samples, z 72 and 103,
-//   cut 2.05 and 2.60) because the residual check rejects even the true model (delay exactly one
-//   sample: p 5e-10 and 7e-6, current coherence 0.174 and 0.129 after the rounding replicas'
-//   is subtracted). It is the rounding's null, not the model: logged at full precision the true
-//   model replays the record to NRMSE 0.0029 and passes (p 0.18), and the audit names the delay.
-//   The replicas do not carry the record's rounding: left out in turn and checked against the
-//   other seven, the replicas' own z spread from -3.6 to +4.5 (clean record: -2.9 to +4.3), the
-//   null law's N(0, 1) too narrow by about 2x at 1.3 ms; the clean record passes at z 1.98.
+// - sensor_delay at 1.3 ms: "unexplained" (the delay found, 0.99 samples, z 72, cut 2.05): the
+//   residual check rejects it, current coherence 0.119 at z 5.1 against the rounding replicas'
+//   own spread (p 0.0014). It is the rounding's null, not the model: logged at full precision the
+//   true model replays the record to NRMSE 0.0029 and passes (p 0.18), and the audit names the
+//   delay. Under the law of independent windows alone even the true model (delay exactly one
+//   sample) failed (p 5e-10), and the replicas, each checked against the other seven, read z
+//   from -3.6 to +4.5 (clean record: -2.9 to +4.3); their spread named the delay at 1.5 ms.
 // - sensor_delay at 4 ms: no board tuning in the note's range replays (Kp 2-3 V/mm, Td 20-30 ms:
 //   the body reaches the ground, or the true model's replay leaves the record, cut 1.41-1.68 with
 //   the command 0.9-1.9 V rms off the logged one); with Kp 3, Td 20 ms it reads "unexplained".
@@ -74,11 +75,13 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 //   mass enters only through the back-EMF constant (gravity balance closes the force: the
 //   mechanical row g (1 - (i/i0)^n_i (x0/x)^n_x) holds no m); the back-EMF is Ke x'/x^4 = 0.38 V
 //   per m/s, a few mV at the steps' speeds, below the replay's 0.15 V rms command floor.
-// - amplifier_gain at 1.3 and 1.5 ms reads as force_law and coil_resistance (both start at the
-//   steady current's value, maglev_starts.hpp; only the coil's pole R / L tells gain and
-//   resistance apart).
-// - sensor_offset at 1.3 and 3.25 ms reads as force_law; sensor_gain at 3.25 ms is "none" (z 18.6
-//   but the NRMSE cut below the rounded record's 10 %); harmonic_disturbance at 1.3 ms
+// - amplifier_gain reads as sensor_nonlinearity at 1.3 ms (cut 1.17) and coil_resistance at 1.5 ms
+//   (1.65): both start at the steady current's value (maglev_starts.hpp), and only the coil's
+//   pole R / L tells gain and resistance apart.
+// - sensor_offset reads as force_law at 1.3, 3.25 and 4 ms (cut 1.30, 1.38, 1.28) and as
+//   amplifier_gain at 1.5 ms (1.26; named sensor_offset while the residual check's law of
+//   independent windows rejected amplifier_gain's residual); sensor_gain at 3.25 ms is "none"
+//   (z 18.6 but the NRMSE cut below the rounded record's 10 %); harmonic_disturbance at 1.3 ms
 //   "unexplained" (the residual check).
 const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "none_1500us_seed11",
@@ -95,7 +98,6 @@ const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "amplifier_gain_4000us_seed11",
                                            "sensor_gain_1300us_seed11",
                                            "sensor_gain_1500us_seed11",
-                                           "sensor_offset_1500us_seed11",
                                            "sensor_nonlinearity_1300us_seed11",
                                            "sensor_nonlinearity_1500us_seed11",
                                            "sensor_nonlinearity_3250us_seed11",
@@ -107,6 +109,7 @@ const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "harmonic_disturbance_1500us_seed11",
                                            "harmonic_disturbance_3250us_seed11",
                                            "harmonic_disturbance_4000us_seed11",
+                                           "sensor_delay_1500us_seed11",
                                            "sensor_delay_3250us_seed11"};
 
 // The effects, whose named cases must cut the validation NRMSE at least 2x.
