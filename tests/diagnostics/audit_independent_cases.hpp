@@ -44,7 +44,10 @@ double relative_size(const sim::Effect& effect);
 // Effects the audit does not tell apart at 0.1 um / 1 mA on these records (known weaknesses,
 // issue 17; measured z of the truth's finding against the other's):
 // - the two lags (force behind current, measurement behind position): their fits differ by a
-//   cost of ~0.002 (NRMSE^2) at 1.5-2e-4 s, and a larger lag makes every loop unstable;
+//   cost of ~0.002 (NRMSE^2) at 1.5-2e-4 s, and a larger lag makes every loop unstable. Since
+//   the head-to-head test whitens the outputs jointly (diagnostics/audit/audit_rivals.hpp) the
+//   confusion table's draws name both right (6 of 6, z 5.5-19.9 over the other); the group
+//   stays until a wider sweep confirms it;
 // - coil resistance and amplifier gain: both move the steady kw/R and with it every current,
 //   which dominates the residual; the electrical pole that tells them apart sits at 6.5 Hz
 //   (dkw 0.33 under PID named coil_resistance at z 713). Since the head-to-head choice
