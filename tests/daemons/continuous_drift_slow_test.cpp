@@ -26,11 +26,11 @@
 namespace ambid::daemons {
 namespace continuous_drift_slow_test {
 
-constexpr double kDriftSkip = 4.0;     // s: the start from the nominal model
-constexpr double kBlock = 30.0;        // s of plant time per mean
-constexpr double kRecord = 10.0;       // s per record, as the stack's plant source
-constexpr int kRecords = 6;            // 60 s
-constexpr double kAllowance = 0.003;   // relative, beyond 3 standard errors
+constexpr double kDriftSkip = 4.0;                                      // s: the start from the nominal model
+constexpr double kBlock = 30.0;                                         // s of plant time per mean
+constexpr double kRecord = 10.0;                                        // s per record, as the stack's plant source
+constexpr int kRecords = 6;                                             // 60 s
+constexpr double kAllowance = 0.003;                                    // relative, beyond 3 standard errors
 const std::vector<std::string> kDriftNames = {"v5", "v7", "v8", "v9"};  // R1, R2, kw1, kw2
 
 // Per parameter: (plant time, relative error) of every estimate after kDriftSkip.
