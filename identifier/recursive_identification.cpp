@@ -82,6 +82,7 @@ void RecursiveIdentification::add(const Experiment& stretch) {
         amb1dof_cold_start(amb1dof_nominal_structure(stretch, kRpemWho), spread, stretch.sample_time);
     Amb1dofRecursivePemOptions o;
     o.forgetting = options_.forgetting;
+    o.window_estimates = options_.window_estimates;
     if (options_.offset_random_walk) o.offset_random_walk = *options_.offset_random_walk;
     if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
     estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time,
@@ -101,6 +102,12 @@ void RecursiveIdentification::relax(double carry) {
   if (estimator_) estimator_->relax(carry);
 }
 
+void RecursiveIdentification::begin_window(double carry) {
+  if (!options_.window_estimates) throw Error(kRpemWho + ": per-window estimates need window_estimates");
+  if (!(carry > 0.0 && carry <= 1.0)) throw Error(kRpemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
+  if (estimator_) estimator_->begin_window(carry);
+}
+
 WindowIdentification RecursiveIdentification::estimate() const {
   if (!estimator_ || estimator_->samples() == 0) throw InsufficientData(kRpemWho + ": no samples yet");
   const Amb1dofRecursivePem& r = *estimator_;
@@ -109,8 +116,8 @@ WindowIdentification RecursiveIdentification::estimate() const {
   model.plant_model = plant_model_;
   model.method = kRpemWho;
   model.sample_time = sample_time_;
-  const Eigen::Matrix<double, 9, 1> v = r.v();
-  const Eigen::Matrix<double, 9, 9> covariance = r.covariance();
+  const Eigen::Matrix<double, 9, 1> v = options_.window_estimates ? r.window_v() : r.v();
+  const Eigen::Matrix<double, 9, 9> covariance = options_.window_estimates ? r.window_covariance() : r.covariance();
   Eigen::Matrix4d A;
   Eigen::Matrix<double, 4, 3> B;
   pem::structure_matrices(v, Eigen::Vector3d::Zero(), A, B);
@@ -138,6 +145,7 @@ WindowIdentification RecursiveIdentification::estimate() const {
                                 {"forgetting", r.forgetting()},
                                 {"projections", r.projections()},
                                 {"jumps", r.jumps()},
+                                {"commits", r.commits()},
                                 {"offset", {offset(0), offset(1), offset(2)}},
                                 {"predictor_gain", rows(r.predictor_gain())},
                                 {"residual_rms", {rms(0), rms(1), rms(2)}}};

@@ -34,6 +34,8 @@ struct RecursiveIdentifyOptions {
   // Variance per sample of the offsets' random walk (Amb1dofRecursivePemOptions); empty: the
   // family's default.
   std::optional<double> offset_random_walk = std::nullopt;
+  // Per-window estimates (begin_window; Amb1dofRecursivePemOptions::window_estimates).
+  bool window_estimates = false;
 };
 
 class RecursiveIdentification {
@@ -53,14 +55,18 @@ class RecursiveIdentification {
   // otherwise), so that the next estimate rests mostly on the samples after this call. Nothing
   // before the start.
   void relax(double carry);
+  // Amb1dofRecursivePem::begin_window (options.window_estimates, else Error): estimate() is
+  // from now on that of the samples after this call, with the information so far scaled by
+  // `carry` in (0, 1] (Error otherwise) as its prior. Nothing before the start.
+  void begin_window(double carry);
 
   bool started() const { return estimator_ != nullptr; }
   std::uint64_t samples() const;      // since the start
   std::uint64_t projections() const;  // updates rejected for an unstable predictor
 
-  // The current model: v1..v9, the physical quantities (with the nominal L1, L2, m) and their
-  // sigmas, the continuous model and its zero-order hold; model.extra["rpem"] the samples,
-  // forgetting, projections, offset, predictor gain and prediction-error rms. Throws
+  // The current model (with window_estimates: the current window's): v1..v9, the physical quantities (with the nominal
+  // L1, L2, m) and their sigmas, the continuous model and its zero-order hold; model.extra["rpem"] the samples,
+  // forgetting, projections, jumps, commits, offset, predictor gain and prediction-error rms. Throws
   // InsufficientData before the first sample.
   WindowIdentification estimate() const;
 

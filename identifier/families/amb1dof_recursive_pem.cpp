@@ -68,6 +68,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
         prior.head<9>().setConstant(options.prior_relative_sigma * options.prior_relative_sigma);
         return UdCovariance(prior);
       }()),
+      window_ud_(ud_),
       lambda_(spread.cwiseAbs2()),
       s1_(options.prior_weight_samples),
       forgetting_(options.startup_forgetting) {
@@ -82,19 +83,21 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
     throw Error(kRecursivePemWho +
                 ": startup_samples, relinearise_samples, prior_weight_samples and jump_samples must be >= 1");
   if (!(options.jump_threshold > 0.0)) throw Error(kRecursivePemWho + ": jump_threshold must be > 0");
+  if (!(options.commit_threshold > 0.0)) throw Error(kRecursivePemWho + ": commit_threshold must be > 0");
   if (!model_map_.allFinite()) throw Error(kRecursivePemWho + ": the operating point's i1, i2, u1, u2 must be finite");
   theta_.head<9>() = start.v;
   theta_.segment<3>(9) = start.offset - model_map_.bottomLeftCorner<3, 9>() * start.v;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) theta_(kThetaGain + 3 * i + j) = start.predictor_gain(i, j);
   scale_ = parameter_scale(theta_, spread);
+  window_origin_ = theta_;
   checked_ = theta_;
   relinearise();
   if (projections_ > 0) throw InsufficientData(kRecursivePemWho + ": the predictor of the start is unstable");
 }
 
 Eigen::Matrix<double, 4, 3> Amb1dofRecursivePem::predictor_gain() const {
-  return pem::gain_of(batch_parameters(model(), theta_));
+  return pem::gain_of(batch_parameters(model_of(estimate()), estimate()));
 }
 
 Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::covariance() const {
@@ -111,7 +114,11 @@ void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   quiet_ = static_cast<int>(options_.jump_samples) * 4;
   // The first start has no predictor to warm up: its theta is the prior, forgotten fast anyway.
   // The length is taken at the next sample, from the predictor a projection has settled on.
-  if (started_) warmup_ = -1;
+  if (started_) {
+    warmup_ = -1;
+    tracking_ = options_.window_estimates;
+    restarted_ = true;
+  }
   started_ = true;
 }
 
@@ -120,6 +127,53 @@ int Amb1dofRecursivePem::warmup_samples() const {
   const double memory = options_.forgetting < 1.0 ? 1.0 / (1.0 - options_.forgetting) : options_.startup_samples;
   const double n = std::log(options_.restart_decay) / std::log(predictor_radius_);
   return static_cast<int>(std::ceil(std::clamp(std::isfinite(n) ? n : memory, 1.0, memory)));
+}
+
+void Amb1dofRecursivePem::begin_window(double carry) {
+  if (!options_.window_estimates) throw Error(kRecursivePemWho + ": per-window estimates need window_estimates");
+  if (!(carry > 0.0 && carry <= 1.0))
+    throw Error(kRecursivePemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
+  // Tracking (a jump or a restart in the window that ends): the plain RPEM goes on, its
+  // information relaxed by carry as a one-off forgetting; after a window without either the
+  // held theta stays put again.
+  tracking_ = tracking_ && (jumps_ != jumps_at_window_ || restarted_);
+  jumps_at_window_ = jumps_;
+  restarted_ = false;
+  if (tracking_) {
+    relax(carry);
+    return;
+  }
+  if (pending_.head<9>().cwiseAbs().maxCoeff() > options_.commit_threshold) {
+    // The held theta moves to the long-memory estimate if its predictor is stable, else to its
+    // v and c with the held K; if neither is stable it stays (the state goes on: it is the held
+    // theta's) and the move is counted a projection.
+    const Theta held = theta_, target = estimate();
+    theta_ = target;
+    bool stable = linearise_at_theta();
+    if (!stable) {
+      theta_.tail<12>() = held.tail<12>();
+      stable = linearise_at_theta();
+    }
+    if (stable) {
+      pending_ = (target - theta_).cwiseQuotient(scale_);
+      checked_ = theta_;
+      reference_model_ = model_of(theta_);
+      hold_ << reference_.Ad, reference_.Bd;
+      ++commits_;
+    } else {
+      ++projections_;
+      theta_ = held;
+      linearise_at_theta();
+    }
+  }
+  start_window(carry);
+}
+
+void Amb1dofRecursivePem::start_window(double carry) {
+  window_origin_ = theta_;
+  window_step_ = pending_;
+  window_ud_ = ud_;
+  window_ud_.scale(1.0 / carry);
 }
 
 void Amb1dofRecursivePem::relax(double carry) {
@@ -136,6 +190,17 @@ void Amb1dofRecursivePem::relax(double carry) {
   s2_ *= carry * carry;
 }
 
+Eigen::Matrix<double, 9, 1> Amb1dofRecursivePem::window_v() const {
+  if (tracking_) return v();
+  return (window_origin_ + scale_.cwiseProduct(window_step_)).head<9>();
+}
+
+Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::window_covariance() const {
+  if (tracking_) return covariance();
+  const Eigen::Matrix<double, 9, 1> s = scale_.head<9>();
+  return s.asDiagonal() * window_ud_.covariance().topLeftCorner<9, 9>() * s.asDiagonal();
+}
+
 void Amb1dofRecursivePem::detect_jump(const Eigen::Vector3d& e) {
   const double a = 1.0 / options_.jump_samples;
   // Per coil: the coil's v (R and kw: v5, v8 resp. v7, v9) and its offset c.
@@ -150,42 +215,48 @@ void Amb1dofRecursivePem::detect_jump(const Eigen::Vector3d& e) {
     if (!(std::abs(drift) > options_.jump_threshold)) continue;
     // A jump: the coil's parameters get back at least the start's variance, so that the data
     // after it fix the new balance of the coil equation before anything else moves.
-    const Eigen::VectorXd variances = ud_.variances();
-    for (const int k : kCoilParameters[coil]) {
-      const double prior = k < 9 ? options_.prior_relative_sigma * options_.prior_relative_sigma : 1.0;
-      if (!(variances(k) < prior)) continue;
-      Theta along = Theta::Unit(k);
-      ud_.add(prior - variances(k), along);
+    for (UdCovariance* factor : {&ud_, &window_ud_}) {
+      const Eigen::VectorXd variances = factor->variances();
+      for (const int k : kCoilParameters[coil]) {
+        const double prior = k < 9 ? options_.prior_relative_sigma * options_.prior_relative_sigma : 1.0;
+        if (!(variances(k) < prior)) continue;
+        Theta along = Theta::Unit(k);
+        factor->add(prior - variances(k), along);
+      }
     }
     drift = 0.0;
     ++jumps_;
+    tracking_ = options_.window_estimates;
   }
+}
+
+bool Amb1dofRecursivePem::linearise_at_theta() {
+  const pem::Parameters batch = batch_parameters(model_of(theta_), theta_);
+  reference_ = pem::zero_order_hold(batch, sample_time_, true);
+  gain_ = pem::gain_of(batch);
+  Eigen::Matrix4d F = reference_.Ad;
+  for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
+  predictor_radius_ = F.allFinite() ? linalg::spectral_radius(F) : 1.0;
+  return F.allFinite() && predictor_radius_ < options_.max_predictor_radius;
 }
 
 void Amb1dofRecursivePem::relinearise() {
   since_relinearise_ = 0;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    const pem::Parameters batch = batch_parameters(model(), theta_);
-    reference_ = pem::zero_order_hold(batch, sample_time_, true);
-    gain_ = pem::gain_of(batch);
-    Eigen::Matrix4d F = reference_.Ad;
-    for (int j = 0; j < 3; ++j) F.col(pem::kMeasured[std::size_t(j)]) -= gain_.col(j);
-    predictor_radius_ = F.allFinite() ? linalg::spectral_radius(F) : 1.0;
-    const bool stable = F.allFinite() && predictor_radius_ < options_.max_predictor_radius;
-    if (stable || attempt == 1) break;
+  if (!linearise_at_theta()) {
     // Ljung's projection: back to the last stable predictor, its state from the measurement.
     ++projections_;
     theta_ = checked_;
     restart({x_(0), x_(2), x_(3)});
+    linearise_at_theta();
   }
   checked_ = theta_;
-  reference_model_ = model();
+  reference_model_ = model_of(theta_);
   hold_ << reference_.Ad, reference_.Bd;
 }
 
 void Amb1dofRecursivePem::set_model() {
   hold_ << reference_.Ad, reference_.Bd;
-  const Eigen::Matrix<double, 12, 1> change = model() - reference_model_;
+  const Eigen::Matrix<double, 12, 1> change = model_of(theta_) - reference_model_;
   for (int k = 0; k < pem::kModel; ++k) hold_ += change(k) * reference_.derivative.block<4, 7>(4 * k, 0);
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) gain_(i, j) = theta_(kThetaGain + 3 * i + j);
@@ -215,25 +286,39 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
     ud_.add(options_.offset_random_walk, along);
   }
 
-  Theta step = Theta::Zero(), h, gain;
+  // e(theta) ~ e - psi' (theta - theta_) about the predictor's theta_: the long-memory estimate
+  // (pending_) and, with window_estimates, the window's (about window_origin_, which theta_ has
+  // moved from by `moved` only if a projection put it back).
+  Theta h, gain;
+  const Theta moved = (theta_ - window_origin_).cwiseQuotient(scale_);
   for (int j = 0; j < 3; ++j) {
     h = w_.row(pem::kMeasured[std::size_t(j)]).transpose().cwiseProduct(scale_);
-    const double innovation = e(j) - h.dot(step);
+    const double innovation = e(j) - h.dot(pending_);
     ud_.update(h, lambda_(j), gain);
-    step += gain * innovation;
+    pending_ += gain * innovation;
+    if (!options_.window_estimates) continue;
+    const double window_innovation = e(j) + h.dot(moved) - h.dot(window_step_);
+    window_ud_.update(h, lambda_(j), gain);
+    window_step_ += gain * window_innovation;
   }
-  theta_ += scale_.cwiseProduct(step);
-  set_model();
+  if (!options_.window_estimates || tracking_) {  // the plain RPEM: theta_ follows at every sample
+    theta_ += scale_.cwiseProduct(pending_);
+    pending_.setZero();
+    set_model();
+  }
   propagate(e, u);
   ++samples_;
-  if (!x_.allFinite() || !w_.allFinite() || !theta_.allFinite()) {
+  if (!x_.allFinite() || !w_.allFinite() || !theta_.allFinite() || !pending_.allFinite() || !window_step_.allFinite()) {
     ++projections_;
     theta_ = checked_;
+    pending_.setZero();
     relinearise();
     restart(y);
+    start_window(1.0);
     return;
   }
-  if (++since_relinearise_ >= options_.relinearise_samples) relinearise();
+  // With window_estimates theta_ moves at window starts only (begin_window relinearises then).
+  if ((!options_.window_estimates || tracking_) && ++since_relinearise_ >= options_.relinearise_samples) relinearise();
 }
 
 void Amb1dofRecursivePem::propagate(const Eigen::Vector3d& e, const Eigen::Vector2d& u) {

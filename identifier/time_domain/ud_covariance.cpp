@@ -24,6 +24,11 @@ void UdCovariance::forget(double lambda) {
   d_ = (d_ / lambda).cwiseMin(ceiling_);
 }
 
+void UdCovariance::scale(double c) {
+  if (!(c > 0.0) || !std::isfinite(c)) throw Error("UD covariance: a scale must be finite and > 0");
+  d_ *= c;
+}
+
 void UdCovariance::add(double c, Eigen::Ref<Eigen::VectorXd> a) {
   if (!(c >= 0.0) || a.size() != size()) throw Error("UD covariance: a random walk needs c >= 0 and a of size n");
   // The columns from the last: a's part along column j goes into D_j, the rest on to the columns before.

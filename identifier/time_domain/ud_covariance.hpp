@@ -22,6 +22,9 @@ class UdCovariance {
   // P <- P / lambda, 0 < lambda <= 1.
   void forget(double lambda);
 
+  // P <- c P (c > 0).
+  void scale(double c);
+
   // P <- P + c a a', c >= 0 (a random walk of the parameters along a: Agee & Turner 1972, as
   // Bierman 1977 sec. VI.3; O(n^2), and U, D stay a factorisation with D > 0).
   void add(double c, Eigen::Ref<Eigen::VectorXd> a);

@@ -6,7 +6,7 @@
 namespace ambid::daemons {
 
 ContinuousEstimator::ContinuousEstimator(ContinuousSettings settings)
-    : carry_(settings.carry), estimator_(settings.recursive) {
+    : carry_(settings.carry), window_estimates_(settings.recursive.window_estimates), estimator_(settings.recursive) {
   if (!(carry_ > 0.0 && carry_ <= 1.0))
     throw Error("continuous estimator: carry must be in (0, 1], got " + std::to_string(carry_));
 }
@@ -15,7 +15,10 @@ bus::IdentifiedModel ContinuousEstimator::identify(const Experiment& window, con
                                                    std::uint64_t seq) {
   estimator_.add(window);
   bus::IdentifiedModel model = convert::to_message(estimator_.estimate(), window, plant_id, seq, "rpem");
-  estimator_.relax(carry_);
+  if (window_estimates_)
+    estimator_.begin_window(carry_);
+  else
+    estimator_.relax(carry_);
   return model;
 }
 

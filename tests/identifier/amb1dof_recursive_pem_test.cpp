@@ -208,6 +208,10 @@ TEST(UdCovariance, IsTheCovarianceUpdate) {
   EXPECT_LT((ud.variances() - P.diagonal()).norm(), 1e-9 * P.diagonal().norm());
   EXPECT_THROW(UdCovariance(Eigen::VectorXd::Zero(3)), Error);
   EXPECT_THROW(ud.forget(1.5), Error);
+  // scale(c): P <- c P, every correlation kept (the prior of a window estimate).
+  ud.scale(10.0);
+  EXPECT_LT((ud.covariance() - 10.0 * P).norm(), 1e-9 * 10.0 * P.norm());
+  EXPECT_THROW(ud.scale(0.0), Error);
 }
 
 }  // namespace amb1dof_recursive_pem_test
