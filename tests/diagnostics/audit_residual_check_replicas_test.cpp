@@ -4,7 +4,9 @@
 // the replicas the check rejects such a residual every time; with replicas of the same mechanism
 // (other q, the same w) it rejects at its stated rate, and still rejects a residual that holds r
 // through a wrong model.
+#include <functional>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -40,9 +42,11 @@ Eigen::VectorXd excitation(std::mt19937_64& rng) {
   return w;
 }
 
-std::vector<NullReplica> replicas_of(const Eigen::VectorXd& w, std::mt19937_64& rng) {
+// Eight rounded records of the same w, each passed through `transform` (none by default).
+template <class Transform = std::identity>
+std::vector<NullReplica> replicas_of(const Eigen::VectorXd& w, std::mt19937_64& rng, Transform transform = {}) {
   std::vector<NullReplica> out;
-  for (int m = 0; m < 8; ++m) out.push_back(rounded_record(w, rng));
+  for (int m = 0; m < 8; ++m) out.push_back(transform(rounded_record(w, rng)));
   return out;
 }
 
@@ -100,8 +104,8 @@ TEST(AuditResidualCheckReplicas, TheReplicasSpreadWidensTheNullWhereTheWindowsAr
   for (int t = 0; t < kTrials; ++t) {
     const Eigen::VectorXd w = excitation(rng);
     const NullReplica record = with_random_gain(rounded_record(w, rng), rng);
-    std::vector<NullReplica> replicas;
-    for (int m = 0; m < 8; ++m) replicas.push_back(with_random_gain(rounded_record(w, rng), rng));
+    const std::vector<NullReplica> replicas =
+        replicas_of(w, rng, [&rng](NullReplica r) { return with_random_gain(std::move(r), rng); });
     rejected += residual_check(record.residual, record.excitation, kAlpha, {}, replicas).consistent ? 0 : 1;
     // Two replicas: too few to measure a spread, the law of independent windows alone.
     const std::vector<NullReplica> two(replicas.begin(), replicas.begin() + 2);

@@ -36,13 +36,11 @@ using ::testing::Not;
 // see the spread of the estimates (a 1 s record replayed over and over repeats 3 windows,
 // whose spread is no noise model).
 std::string record(const Stack& stack, const std::string& controller, double duration = 10.0) {
-  const std::string stem = (stack.dir() / controller).string();
-  const CommandResult r = run_ambid("sim --controller " + controller +
-                                    " --excitation prbs --amplitude 1.0 --position-noise 1e-9 --current-noise 1e-6"
-                                    " --duration " +
-                                    std::to_string(duration) + " --seed 7 --out " + stem);
+  const SimRecording recording{
+      .controller = controller, .position_noise = 1e-9, .current_noise = 1e-6, .duration = duration};
+  const CommandResult r = record_sim(stack.dir(), recording);
   EXPECT_EQ(r.status, 0) << r.output;
-  return stem + ".json";
+  return sim_recording_file(stack.dir(), recording);
 }
 
 // R1 of every window the identifier can cut from one replayed record, identified offline with

@@ -46,6 +46,19 @@ double metric(const std::string& text, const std::string& line) {
   return at == std::string::npos ? -1.0 : std::stod(text.substr(at + line.size() + 1));
 }
 
+std::string sim_recording_file(const std::filesystem::path& dir, const SimRecording& recording) {
+  return (dir / (recording.controller + ".json")).string();
+}
+
+CommandResult record_sim(const std::filesystem::path& dir, const SimRecording& recording) {
+  std::ostringstream args;
+  args << "sim --controller " << recording.controller << " --excitation prbs --amplitude 1.0"
+       << " --position-noise " << recording.position_noise << " --current-noise " << recording.current_noise
+       << " --duration " << recording.duration << " --seed " << recording.seed << " --out "
+       << (dir / recording.controller).string();
+  return run_ambid(args.str());
+}
+
 Stack::Stack(const std::string& name, int domain, const std::map<std::string, std::string>& vendors)
     : dir_(fs::path(AMBID_BINARY_DIR) / "test-output" / name), domain_(domain), vendors_(vendors) {
   fs::remove_all(dir_);

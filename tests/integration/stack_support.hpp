@@ -21,6 +21,20 @@ std::string http_get(int port, const std::string& path);
 // The number after `line` in the Prometheus exposition `text` (-1 when the line is missing).
 double metric(const std::string& text, const std::string& line);
 
+// What a test's `ambid sim` recording of the stack's bearing varies: the 1 V PRBS of
+// deploy/config/nominal-bearing.json closed by a controller, at these noise levels.
+struct SimRecording {
+  std::string controller;
+  double position_noise = 1e-7;  // m
+  double current_noise = 1e-3;   // A
+  double duration = 10.0;        // s
+  int seed = 7;
+};
+// Writes DIR/CONTROLLER.json (+ .csv); the file is `sim_recording_file(dir, recording)`. The
+// caller checks the command's status (this file is also linked without GoogleTest).
+CommandResult record_sim(const std::filesystem::path& dir, const SimRecording& recording);
+std::string sim_recording_file(const std::filesystem::path& dir, const SimRecording& recording);
+
 class Stack {
  public:
   // vendors: "fastdds" or "cyclone" per daemon (plant, identifier, diagnostics).

@@ -105,13 +105,10 @@ TEST(StackSwap, TheMainJobsHotCoilIsAnErrorOnCoilOneOnly) {
 
 // A 10 s recording of `controller` at the stack's noise and excitation (nominal-bearing.json).
 std::string record(const Stack& stack, const std::string& controller, int seed) {
-  const std::string stem = (stack.dir() / controller).string();
-  const CommandResult r = run_ambid("sim --controller " + controller +
-                                    " --excitation prbs --amplitude 1.0 --position-noise 1e-7 --current-noise 1e-3"
-                                    " --duration 10 --seed " +
-                                    std::to_string(seed) + " --out " + stem);
+  const SimRecording recording{.controller = controller, .seed = seed};
+  const CommandResult r = record_sim(stack.dir(), recording);
   EXPECT_EQ(r.status, 0) << r.output;
-  return stem + ".json";
+  return sim_recording_file(stack.dir(), recording);
 }
 
 TEST(StackSwap, SwapsBetweenThreeControllersOfTheSameBearingRaiseNothing) {
