@@ -63,6 +63,8 @@ TEST(ContinuousEstimator, RefusesACarryOutsideZeroToOne) {
   for (double carry : {0.0, -0.1, 1.5, std::nan("")})
     EXPECT_THROW(ContinuousEstimator(ContinuousSettings{.carry = carry}), Error) << carry;
   EXPECT_NO_THROW(ContinuousEstimator(ContinuousSettings{.carry = 1.0}));
+  // It publishes per-window estimates only (the plain RPEM's relaxed estimates were biased).
+  EXPECT_THROW(ContinuousEstimator(ContinuousSettings{.recursive = {.window_estimates = false}}), Error);
 }
 
 TEST(ContinuousEstimator, RefusesAWindowOfAnotherPlant) {
