@@ -85,6 +85,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
                 ": startup_samples, relinearise_samples, prior_weight_samples and jump_samples must be >= 1");
   if (!(options.jump_threshold > 0.0)) throw Error(kRecursivePemWho + ": jump_threshold must be > 0");
   if (!(options.commit_threshold > 0.0)) throw Error(kRecursivePemWho + ": commit_threshold must be > 0");
+  if (!(options.max_held_radius > 0.0)) throw Error(kRecursivePemWho + ": max_held_radius must be > 0");
   if (!model_map_.allFinite()) throw Error(kRecursivePemWho + ": the operating point's i1, i2, u1, u2 must be finite");
   theta_.head<9>() = start.v;
   theta_.segment<3>(9) = start.offset - model_map_.bottomLeftCorner<3, 9>() * start.v;
@@ -131,12 +132,13 @@ void Amb1dofRecursivePem::begin_window(double carry) {
   if (!(carry > 0.0 && carry <= 1.0))
     throw Error(kRecursivePemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
   if (pending_.head<9>().cwiseAbs().maxCoeff() > options_.commit_threshold) {
-    // The held theta moves to the long-memory estimate if its predictor is stable, else to its
-    // v and c with the held K; if neither is stable it stays (the state goes on: it is the held
-    // theta's) and the move is counted a projection.
+    // The held theta moves to the long-memory estimate if its predictor's spectral radius is
+    // below options.max_held_radius, else to its v and c with the held K; if that predictor is
+    // unstable the held theta stays (the state goes on: it is the held theta's) and the move is
+    // counted a projection.
     const Theta held = theta_, target = estimate();
     theta_ = target;
-    bool stable = linearise_at_theta();
+    bool stable = linearise_at_theta() && predictor_radius_ < options_.max_held_radius;
     if (!stable) {
       theta_.tail<12>() = held.tail<12>();
       stable = linearise_at_theta();

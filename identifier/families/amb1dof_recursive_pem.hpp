@@ -101,6 +101,13 @@ struct Amb1dofRecursivePemOptions {
   // begin_window's per-window estimates, the predictor's theta held between windows (see there).
   bool window_estimates = false;
   double commit_threshold = 0.02;  // relative move of a v that moves the held theta (> 0)
+  // A move of the held theta keeps the held K when the long-memory estimate's predictor has a
+  // spectral radius at or above this (> 0). Its K drifts where the data say little: on the
+  // deployed bearing (LQR, 1 V, 0.1 um / 1 mA) the long-memory predictor's radius wandered
+  // between 0.9975 and 1.0107 (the plain RPEM's: 0.988), and held at those predictors R1, R2
+  // per 0.5 s window scattered 1.9-2.0 % at 1 V and 5.2-5.8 % at 0.3 V, +1.8..+2.1 % biased at
+  // 0.3 V; with 0.998: 1.2 % and 2.3-2.4 %, within 0.3 % of the truth (30 s means; seed 21).
+  double max_held_radius = 0.998;
 };
 
 class Amb1dofRecursivePem {
