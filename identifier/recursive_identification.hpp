@@ -52,7 +52,9 @@ class RecursiveIdentification {
   // The samples of `stretch` (an amb1dof_voltage experiment with its nominal parameters; the
   // outputs x, i1, i2 and inputs u1, u2). Throws Error naming what the experiment lacks (another
   // plant family, a missing signal or parameter), InsufficientData when the first stretch's
-  // outputs do not vary (no scale to start from); the estimator is then unchanged.
+  // outputs do not vary (no scale to start from) or, with window_estimates, when its excitation
+  // moves r1 and r2 together (the batch method's check: the two coils cannot be told apart); the
+  // estimator is then unchanged (the next stretch follows a gap).
   void add(const Experiment& stretch);
 
   // Amb1dofRecursivePem::begin_window (options.window_estimates, else Error): estimate() is

@@ -76,5 +76,23 @@ TEST(ContinuousEstimator, RefusesAWindowOfAnotherPlant) {
   EXPECT_THROW(estimator.identify(w, "p", 0), Error);
 }
 
+// A chirp on both amplifiers (r1 and r2 in lockstep, as the plant daemon's chirp and multisine
+// commands excite them) cannot tell the two coils apart: the window is refused, as the batch
+// method refuses it, and the estimator keeps what it had (R1, R2 read +3 % alike over 30 s of
+// such windows before, and the soak raised false step alerts from them).
+TEST(ContinuousEstimator, RefusesAWindowWhoseExcitationMovesBothInputsTogether) {
+  sim::ScenarioOptions o;
+  o.duration = 0.6;
+  o.amplitude = 0.3;
+  o.excitation = "chirp";
+  o.f_min = 20.0;
+  o.f_max = 500.0;
+  o.position_noise = 1e-7;
+  o.current_noise = 1e-3;
+  const Experiment w = sim::simulate_scenario(o);
+  ContinuousEstimator estimator;
+  EXPECT_THROW(estimator.identify(w, "p", 0), InsufficientData);
+}
+
 }  // namespace continuous_estimator_test
 }  // namespace ambid::daemons
