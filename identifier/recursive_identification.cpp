@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
+#include "core/linalg.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/families/amb1dof_recursive_pem.hpp"
 #include "identifier/plant_families.hpp"
@@ -23,6 +24,22 @@ LoopSignals amb1dof_signals(const Experiment& e) {
     throw Error(kRpemWho + ": identifies " + kFamily + " only, got plant model '" + e.plant.model + "'");
   const IdentificationFamily* family = find_identification_family(kFamily);
   return loop_signals(e, family->y_names, family->u_names, kRpemWho);
+}
+
+// The batch method's check (amb1dof_prediction_error.cpp, checked_spread): r1 and r2 in
+// lockstep (a chirp or a multisine on both inputs) excite one direction of the two coils only.
+// Measured on the soak (tests/integration/soak_slow_test.cpp, 2026-12-03) before this check:
+// the window estimates of an unchanged bearing read R1, R2 alike 2.5-3.7 % below the baseline
+// for 10-20 s at a time and raised 52 false step alerts; offline (ambid's simulator, LQR, a
+// 0.1 V chirp 5-800 Hz on both inputs) R1, R2 averaged +3 % over 30 s.
+void refuse_lockstep_excitation(const Eigen::MatrixXd& r) {
+  if (r.rows() < 2 || !(r.cwiseAbs().maxCoeff() > 0.0)) return;  // no excitation: the noise drives the loop
+  const Eigen::MatrixXd centred = r.rowwise() - r.colwise().mean();
+  const Eigen::Vector2d power = linalg::symmetric_eigenvalues(centred.transpose() * centred);
+  if (!(power(0) > Amb1dofPredictionErrorOptions{}.min_excitation_ratio * power(1)))
+    throw InsufficientData(kRpemWho + ": r1 and r2 move together (the weaker of their directions carries " +
+                           std::to_string(std::max(power(0), 0.0) / power(1)) +
+                           " of the stronger's power): the excitation cannot tell the two coils apart");
 }
 
 Eigen::Vector3d spread_of(const Eigen::MatrixXd& y) {
@@ -60,6 +77,8 @@ Amb1dofCoilOperatingPoint amb1dof_coil_operating_point(const Experiment& e, cons
 RecursiveIdentification::RecursiveIdentification(RecursiveIdentifyOptions options) : options_(options) {
   if (!(options.forgetting > 0.0 && options.forgetting <= 1.0))
     throw Error(kRpemWho + ": forgetting must be in (0, 1], got " + std::to_string(options.forgetting));
+  if (!(options.follow_surprise > 0.0))
+    throw Error(kRpemWho + ": follow_surprise must be > 0, got " + std::to_string(options.follow_surprise));
   if (options.offset_random_walk && !(*options.offset_random_walk >= 0.0))
     throw Error(kRpemWho + ": offset_random_walk must be >= 0, got " + std::to_string(*options.offset_random_walk));
 }
@@ -74,6 +93,7 @@ void RecursiveIdentification::add(const Experiment& stretch) {
   if (stretch.samples() == 0) return;
   const LoopSignals s = amb1dof_signals(stretch);
   if (!s.y.allFinite() || !s.u.allFinite()) throw Error(kRpemWho + ": a sample of x, i1, i2, u1 or u2 is not finite");
+  if (options_.window_estimates) refuse_lockstep_excitation(s.r);
   const bool same_record = estimator_ && stretch.plant.model == plant_model_ && stretch.sample_time == sample_time_;
   if (!same_record) {
     const Amb1dofNominal nominal = amb1dof_nominal(stretch, kRpemWho);
@@ -85,27 +105,45 @@ void RecursiveIdentification::add(const Experiment& stretch) {
     o.window_estimates = options_.window_estimates;
     if (options_.offset_random_walk) o.offset_random_walk = *options_.offset_random_walk;
     if (o.forgetting == 1.0) o.offset_random_walk = 0.0;  // a growing memory: a plant that does not change
-    estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time,
-                                                       amb1dof_coil_operating_point(stretch, kRpemWho), o);
+    const Amb1dofCoilOperatingPoint op = amb1dof_coil_operating_point(stretch, kRpemWho);
+    estimator_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time, op, o);
+    follower_.reset();
+    if (o.window_estimates) {
+      o.window_estimates = false;
+      follower_ = std::make_unique<Amb1dofRecursivePem>(start, spread, stretch.sample_time, op, o);
+    }
+    following_ = false;
     plant_model_ = stretch.plant.model;
     sample_time_ = stretch.sample_time;
     nominal_ = nominal;
   } else if (std::abs(stretch.t(0) - next_time_) > 0.5 * sample_time_) {
     estimator_->restart(s.y.row(0).transpose());  // a gap: the predictor starts again at rest
+    if (follower_) follower_->restart(s.y.row(0).transpose());
+    restarted_ = true;
   }
   for (Eigen::Index k = 0; k < s.y.rows(); ++k) estimator_->update(s.y.row(k).transpose(), s.u.row(k).transpose());
+  if (follower_)
+    for (Eigen::Index k = 0; k < s.y.rows(); ++k) follower_->update(s.y.row(k).transpose(), s.u.row(k).transpose());
   next_time_ = stretch.t(stretch.samples() - 1) + sample_time_;
-}
-
-void RecursiveIdentification::relax(double carry) {
-  if (!(carry > 0.0 && carry <= 1.0)) throw Error(kRpemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
-  if (estimator_) estimator_->relax(carry);
 }
 
 void RecursiveIdentification::begin_window(double carry) {
   if (!options_.window_estimates) throw Error(kRpemWho + ": per-window estimates need window_estimates");
   if (!(carry > 0.0 && carry <= 1.0)) throw Error(kRpemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
-  if (estimator_) estimator_->begin_window(carry);
+  if (!estimator_) return;
+  if (following_) estimator_->hold_at(*follower_);  // before the relaxation: its long memory
+  following_ = false;
+  estimator_->begin_window(carry);
+  follower_->relax(carry);
+}
+
+void RecursiveIdentification::end_window() {
+  if (!options_.window_estimates) throw Error(kRpemWho + ": per-window estimates need window_estimates");
+  if (!estimator_ || following_) return;
+  // After a gap the held predictor's state starts again too; the plain RPEM's is its own.
+  following_ = restarted_ || estimator_->window_surprise() > options_.follow_surprise;
+  restarted_ = false;
+  if (following_) ++followed_;
 }
 
 WindowIdentification RecursiveIdentification::estimate() const {
@@ -116,8 +154,11 @@ WindowIdentification RecursiveIdentification::estimate() const {
   model.plant_model = plant_model_;
   model.method = kRpemWho;
   model.sample_time = sample_time_;
-  const Eigen::Matrix<double, 9, 1> v = options_.window_estimates ? r.window_v() : r.v();
-  const Eigen::Matrix<double, 9, 9> covariance = options_.window_estimates ? r.window_covariance() : r.covariance();
+  const bool window = options_.window_estimates && !following_;
+  const Eigen::Matrix<double, 9, 1> v = window ? r.window_v() : following_ ? follower_->v() : r.v();
+  const Eigen::Matrix<double, 9, 9> covariance = window       ? r.window_covariance()
+                                                 : following_ ? follower_->covariance()
+                                                              : r.covariance();
   Eigen::Matrix4d A;
   Eigen::Matrix<double, 4, 3> B;
   pem::structure_matrices(v, Eigen::Vector3d::Zero(), A, B);
@@ -146,6 +187,7 @@ WindowIdentification RecursiveIdentification::estimate() const {
                                 {"projections", r.projections()},
                                 {"jumps", r.jumps()},
                                 {"commits", r.commits()},
+                                {"followed", followed_},
                                 {"offset", {offset(0), offset(1), offset(2)}},
                                 {"predictor_gain", rows(r.predictor_gain())},
                                 {"residual_rms", {rms(0), rms(1), rms(2)}}};

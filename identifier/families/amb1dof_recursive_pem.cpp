@@ -69,6 +69,7 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
         return UdCovariance(prior);
       }()),
       window_ud_(ud_),
+      window_prior_ud_(ud_),
       lambda_(spread.cwiseAbs2()),
       s1_(options.prior_weight_samples),
       forgetting_(options.startup_forgetting) {
@@ -84,14 +85,15 @@ Amb1dofRecursivePem::Amb1dofRecursivePem(const PemWarmStart& start, const Eigen:
                 ": startup_samples, relinearise_samples, prior_weight_samples and jump_samples must be >= 1");
   if (!(options.jump_threshold > 0.0)) throw Error(kRecursivePemWho + ": jump_threshold must be > 0");
   if (!(options.commit_threshold > 0.0)) throw Error(kRecursivePemWho + ": commit_threshold must be > 0");
+  if (!(options.max_held_radius > 0.0)) throw Error(kRecursivePemWho + ": max_held_radius must be > 0");
   if (!model_map_.allFinite()) throw Error(kRecursivePemWho + ": the operating point's i1, i2, u1, u2 must be finite");
   theta_.head<9>() = start.v;
   theta_.segment<3>(9) = start.offset - model_map_.bottomLeftCorner<3, 9>() * start.v;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 3; ++j) theta_(kThetaGain + 3 * i + j) = start.predictor_gain(i, j);
   scale_ = parameter_scale(theta_, spread);
-  window_origin_ = theta_;
   checked_ = theta_;
+  start_window(1.0);
   relinearise();
   if (projections_ > 0) throw InsufficientData(kRecursivePemWho + ": the predictor of the start is unstable");
 }
@@ -114,11 +116,7 @@ void Amb1dofRecursivePem::restart(const Eigen::Vector3d& y) {
   quiet_ = static_cast<int>(options_.jump_samples) * 4;
   // The first start has no predictor to warm up: its theta is the prior, forgotten fast anyway.
   // The length is taken at the next sample, from the predictor a projection has settled on.
-  if (started_) {
-    warmup_ = -1;
-    tracking_ = options_.window_estimates;
-    restarted_ = true;
-  }
+  if (started_) warmup_ = -1;
   started_ = true;
 }
 
@@ -133,23 +131,14 @@ void Amb1dofRecursivePem::begin_window(double carry) {
   if (!options_.window_estimates) throw Error(kRecursivePemWho + ": per-window estimates need window_estimates");
   if (!(carry > 0.0 && carry <= 1.0))
     throw Error(kRecursivePemWho + ": carry must be in (0, 1], got " + std::to_string(carry));
-  // Tracking (a jump or a restart in the window that ends): the plain RPEM goes on, its
-  // information relaxed by carry as a one-off forgetting; after a window without either the
-  // held theta stays put again.
-  tracking_ = tracking_ && (jumps_ != jumps_at_window_ || restarted_);
-  jumps_at_window_ = jumps_;
-  restarted_ = false;
-  if (tracking_) {
-    relax(carry);
-    return;
-  }
   if (pending_.head<9>().cwiseAbs().maxCoeff() > options_.commit_threshold) {
-    // The held theta moves to the long-memory estimate if its predictor is stable, else to its
-    // v and c with the held K; if neither is stable it stays (the state goes on: it is the held
-    // theta's) and the move is counted a projection.
+    // The held theta moves to the long-memory estimate if its predictor's spectral radius is
+    // below options.max_held_radius, else to its v and c with the held K; if that predictor is
+    // unstable the held theta stays (the state goes on: it is the held theta's) and the move is
+    // counted a projection.
     const Theta held = theta_, target = estimate();
     theta_ = target;
-    bool stable = linearise_at_theta();
+    bool stable = linearise_at_theta() && predictor_radius_ < options_.max_held_radius;
     if (!stable) {
       theta_.tail<12>() = held.tail<12>();
       stable = linearise_at_theta();
@@ -169,11 +158,46 @@ void Amb1dofRecursivePem::begin_window(double carry) {
   start_window(carry);
 }
 
+double Amb1dofRecursivePem::window_surprise() const {
+  if (!options_.window_estimates) throw Error(kRecursivePemWho + ": window_surprise needs window_estimates");
+  const Theta deviation = (window_origin_ - window_prior_).cwiseQuotient(scale_) + window_step_;
+  const Eigen::VectorXd variances = window_prior_ud_.variances();
+  return deviation.head<9>().cwiseAbs().cwiseQuotient(variances.head<9>().cwiseSqrt()).maxCoeff();
+}
+
+void Amb1dofRecursivePem::hold_at(const Amb1dofRecursivePem& plain) {
+  if (!options_.window_estimates || plain.options_.window_estimates)
+    throw Error(kRecursivePemWho + ": hold_at holds a window estimator at a plain one's estimate");
+  const Amb1dofRecursivePemOptions options = options_;
+  const std::uint64_t commits = commits_ + 1;
+  const Eigen::Vector3d noise = window_lambda_;
+  *this = plain;
+  options_ = options;
+  commits_ = commits;
+  // The prediction-error variances: the plain RPEM's include the errors of its first samples
+  // after the change; the held predictor's at the start of this window do not.
+  lambda_ = lambda_.cwiseMin(noise);
+  theta_ = estimate();
+  pending_.setZero();
+  if (!linearise_at_theta()) {  // cannot be: the plain estimator checks its predictor
+    ++projections_;
+    theta_ = checked_;
+    linearise_at_theta();
+  }
+  checked_ = theta_;
+  reference_model_ = model_of(theta_);
+  hold_ << reference_.Ad, reference_.Bd;
+  start_window(1.0);
+}
+
 void Amb1dofRecursivePem::start_window(double carry) {
   window_origin_ = theta_;
   window_step_ = pending_;
   window_ud_ = ud_;
   window_ud_.scale(1.0 / carry);
+  window_prior_ = estimate();
+  window_prior_ud_ = window_ud_;
+  window_lambda_ = lambda_;
 }
 
 void Amb1dofRecursivePem::relax(double carry) {
@@ -191,12 +215,10 @@ void Amb1dofRecursivePem::relax(double carry) {
 }
 
 Eigen::Matrix<double, 9, 1> Amb1dofRecursivePem::window_v() const {
-  if (tracking_) return v();
   return (window_origin_ + scale_.cwiseProduct(window_step_)).head<9>();
 }
 
 Eigen::Matrix<double, 9, 9> Amb1dofRecursivePem::window_covariance() const {
-  if (tracking_) return covariance();
   const Eigen::Matrix<double, 9, 1> s = scale_.head<9>();
   return s.asDiagonal() * window_ud_.covariance().topLeftCorner<9, 9>() * s.asDiagonal();
 }
@@ -226,7 +248,6 @@ void Amb1dofRecursivePem::detect_jump(const Eigen::Vector3d& e) {
     }
     drift = 0.0;
     ++jumps_;
-    tracking_ = options_.window_estimates;
   }
 }
 
@@ -276,7 +297,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
   forgetting_ += approach * (options_.forgetting - forgetting_);
   s1_ = lambda * s1_ + 1.0;
   s2_ = lambda * lambda * s2_ + 1.0;
-  detect_jump(e);
+  if (!options_.window_estimates) detect_jump(e);  // a change is followed by a plain RPEM (hold_at)
   lambda_ += (e.cwiseAbs2() - lambda_) / s1_;
 
   // The 3 outputs as scalar measurements of the linearised error e_j(theta) ~ e_j - psi_j' dtheta.
@@ -301,7 +322,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
     window_ud_.update(h, lambda_(j), gain);
     window_step_ += gain * window_innovation;
   }
-  if (!options_.window_estimates || tracking_) {  // the plain RPEM: theta_ follows at every sample
+  if (!options_.window_estimates) {  // the plain RPEM: theta_ follows at every sample
     theta_ += scale_.cwiseProduct(pending_);
     pending_.setZero();
     set_model();
@@ -318,7 +339,7 @@ void Amb1dofRecursivePem::update(const Eigen::Vector3d& y, const Eigen::Vector2d
     return;
   }
   // With window_estimates theta_ moves at window starts only (begin_window relinearises then).
-  if ((!options_.window_estimates || tracking_) && ++since_relinearise_ >= options_.relinearise_samples) relinearise();
+  if (!options_.window_estimates && ++since_relinearise_ >= options_.relinearise_samples) relinearise();
 }
 
 void Amb1dofRecursivePem::propagate(const Eigen::Vector3d& e, const Eigen::Vector2d& u) {

@@ -6,19 +6,19 @@
 namespace ambid::daemons {
 
 ContinuousEstimator::ContinuousEstimator(ContinuousSettings settings)
-    : carry_(settings.carry), window_estimates_(settings.recursive.window_estimates), estimator_(settings.recursive) {
+    : carry_(settings.carry), estimator_(settings.recursive) {
   if (!(carry_ > 0.0 && carry_ <= 1.0))
     throw Error("continuous estimator: carry must be in (0, 1], got " + std::to_string(carry_));
+  if (!settings.recursive.window_estimates)
+    throw Error("continuous estimator: publishes per-window estimates (recursive.window_estimates must be true)");
 }
 
 bus::IdentifiedModel ContinuousEstimator::identify(const Experiment& window, const std::string& plant_id,
                                                    std::uint64_t seq) {
   estimator_.add(window);
+  estimator_.end_window();
   bus::IdentifiedModel model = convert::to_message(estimator_.estimate(), window, plant_id, seq, "rpem");
-  if (window_estimates_)
-    estimator_.begin_window(carry_);
-  else
-    estimator_.relax(carry_);
+  estimator_.begin_window(carry_);
   return model;
 }
 

@@ -7,17 +7,14 @@
 // dropped in between, a record's settling) restarts the predictor's state; another plant model
 // restarts everything.
 //
-// After each published estimate the information carried to the next is scaled by `carry`
-// (RecursiveIdentification::relax): each estimate then rests mostly on its own window, so
-// successive estimates are nearly independent and the reported sigma is their scatter from
-// window to window, as the diagnostics' detectors assume (measured:
-// tests/daemons/continuous_statistics_slow_test.cpp). carry 1 publishes the plain recursive
-// estimate, whose successive values share most of their samples (a 1 s memory published every
-// 0.5 s) and scatter far less from window to window than their sigma says. That default is
-// biased by about one window sigma (R1 +1.1..+1.5 % at 1 V); recursive.window_estimates
-// (opt-in: RecursiveIdentification::begin_window) publishes each window's own estimate about a
-// held theta instead, unbiased on a nominal bearing (tests/daemons/continuous_drift_slow_test.cpp)
-// but not yet through a step fault (amb1dof_recursive_pem.hpp, begin_window).
+// Each published estimate is its window's own (RecursiveIdentification::begin_window,
+// end_window: a Gauss-Newton step about a held theta, the long-memory estimate with its
+// information scaled by `carry` as the prior), so successive estimates are nearly independent
+// and the reported sigma is their scatter from window to window, as the diagnostics' detectors
+// assume (tests/daemons/continuous_statistics_slow_test.cpp), and they are unbiased on a
+// nominal bearing (tests/daemons/continuous_drift_slow_test.cpp). A window far from its prior
+// (a step fault, a swapped plant) or after a gap is published from a plain RPEM run beside it,
+// and the next window is held at that estimate (tests/daemons/continuous_step_fault_test.cpp).
 #include <cstdint>
 #include <string>
 
@@ -32,23 +29,22 @@ struct ContinuousSettings {
   // prior lets them re-settle, so their random walk can be slow (1e-4, the family's default for
   // a plain recursive run, let them absorb part of the noise that R1, R2 should see and made
   // those noisier).
-  ident::RecursiveIdentifyOptions recursive{.forgetting = 0.9999, .offset_random_walk = 1e-6};
+  ident::RecursiveIdentifyOptions recursive{.forgetting = 0.9999, .offset_random_walk = 1e-6, .window_estimates = true};
   double carry = 0.1;  // (0, 1]
 };
 
 class ContinuousEstimator {
  public:
-  // Throws Error for forgetting or carry outside (0, 1].
+  // Throws Error for forgetting or carry outside (0, 1] or without recursive.window_estimates.
   explicit ContinuousEstimator(ContinuousSettings settings = {});
 
   // The window's samples into the estimator, then its estimate as a message (time: the window's
-  // last sample), then the relaxation by carry (begin_window with window_estimates). Throws Error (InsufficientData
-  // before the estimator can start) naming what the window lacks; the estimator keeps what it had.
+  // last sample), then the next window begun with carry. Throws Error (InsufficientData before
+  // the estimator can start) naming what the window lacks; the estimator keeps what it had.
   bus::IdentifiedModel identify(const Experiment& window, const std::string& plant_id, std::uint64_t seq);
 
  private:
   double carry_;
-  bool window_estimates_;
   ident::RecursiveIdentification estimator_;
 };
 

@@ -30,10 +30,9 @@ struct IdentifierConfig {
 };
 
 IdentifierConfig identifier_config(const nlohmann::json& j) {
-  reject_unknown_keys(
-      j, "identifier config",
-      {"plants", "method", "window", "settle", "transient_samples", "failing_consecutive", "failing_recent",
-       "failing_fraction", "publish_rate", "forgetting", "carry", "window_estimates", "jackknife"});
+  reject_unknown_keys(j, "identifier config",
+                      {"plants", "method", "window", "settle", "transient_samples", "failing_consecutive",
+                       "failing_recent", "failing_fraction", "publish_rate", "forgetting", "carry", "jackknife"});
   IdentifierConfig c;
   c.windows.window = config_value(j, "window", c.windows.window);
   c.windows.settle = config_value(j, "settle", c.windows.settle);
@@ -63,12 +62,9 @@ IdentifierConfig identifier_config(const nlohmann::json& j) {
     c.continuous->carry = config_value(j, "carry", c.continuous->carry);
     if (!(c.continuous->carry > 0 && c.continuous->carry <= 1))
       throw Error("identifier config: carry must be in (0, 1], got " + std::to_string(c.continuous->carry));
-    c.continuous->recursive.window_estimates = config_value(j, "window_estimates", false);
-  } else if (j.contains("publish_rate") || j.contains("forgetting") || j.contains("carry") ||
-             j.contains("window_estimates")) {
-    throw Error(
-        "identifier config: publish_rate, forgetting, carry and window_estimates are for method rpem only (method " +
-        c.identify.method + " publishes once per window)");
+  } else if (j.contains("publish_rate") || j.contains("forgetting") || j.contains("carry")) {
+    throw Error("identifier config: publish_rate, forgetting and carry are for method rpem only (method " +
+                c.identify.method + " publishes once per window)");
   }
   // Signed, so that a negative value is named instead of wrapping around.
   const auto count = [&](const char* key, std::size_t fallback) {

@@ -1,17 +1,16 @@
-// The identifier daemon's estimator with per-window estimates (ContinuousEstimator with
-// recursive.window_estimates: rpem, one estimate per 0.5 s window; opt-in, see
-// continuous_estimator.hpp) does not drift on a nominal bearing: on records it did not generate
+// The identifier daemon's estimator (ContinuousEstimator: rpem, one estimate per 0.5 s window
+// about a held theta, see continuous_estimator.hpp) does not drift on a nominal bearing: on records it did not generate
 // (tests/support/amb1dof_records.hpp: the NONLINEAR bearing, RK4 at 16 steps per sample, the
 // LQR loop the stack's bearing runs) at a real bearing's sensor noise (0.1 um on x, 1 mA on each
 // current), fed as the stack feeds it (10 s records one after another, the predictor restarted
 // at each record's start), the mean of the published R1, R2, kw1, kw2 (v5, v7, v8, v9 against
 // the true plant linearised where its loop settles) over each 30 s of plant time after the
 // first kDriftSkip s is within 3 standard errors plus 0.3 % of the truth, at the stack's 1 V
-// PRBS and at 0.5 V. The default (relax by carry 0.1, amb1dof_recursive_pem.hpp) read
-// +1.1..+1.5 % at 1 V and +1.6..+2.4 % at 0.5 V over every 30 s (about one window sigma), which
-// the diagnostics' detectors, comparing windows with the learned baseline, turned into false
-// alerts over long nominal runs. Not yet held: at 0.3 V the window estimates read +1.3..+2.5 %
-// (scatter 4 % per window) in the same test.
+// PRBS and at 0.5 V. The former default (a plain RPEM, its information relaxed by carry 0.1 after
+// each window, amb1dof_recursive_pem.hpp) read +1.1..+1.5 % at 1 V and +1.6..+2.4 % at 0.5 V over
+// every 30 s (about one window sigma), which the diagnostics' detectors, comparing windows with
+// the learned baseline, turned into false alerts over long nominal runs. Not yet held: at 0.3 V the window estimates
+// read +1.3..+2.5 % (scatter 4 % per window) in the same test.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -37,9 +36,7 @@ const std::vector<std::string> kDriftNames = {"v5", "v7", "v8", "v9"};  // R1, R
 using Errors = std::map<std::string, std::vector<std::pair<double, double>>>;
 
 Errors published_errors(double amplitude) {
-  ContinuousSettings settings;
-  settings.recursive.window_estimates = true;
-  ContinuousEstimator estimator(settings);
+  ContinuousEstimator estimator;
   Errors out;
   std::uint64_t seq = 0;
   for (int r = 0; r < kRecords; ++r) {

@@ -1,5 +1,6 @@
-// The identifier daemon's default estimator (ContinuousEstimator: rpem, published once per
-// window, the information carried to the next window scaled by carry 0.1) on records it did
+// The identifier daemon's default estimator (ContinuousEstimator: rpem, each window's own
+// estimate about a held theta, its prior the long-memory estimate's information scaled by carry
+// 0.1) on records it did
 // not generate (tests/support/amb1dof_records.hpp: the NONLINEAR bearing, RK4 at 16 steps per
 // sample, four controllers) at a real bearing's sensor noise (0.1 um on x, 1 mA on each
 // current), 2 V PRBS clocked as the support's noisy records are (prbs_clock_divider: every

@@ -9,14 +9,17 @@
 //   loop: no published R1 reads below the baseline by 10 % or more (the diagnostics'
 //   error_fraction, deploy/config/diagnostics.json: an ERROR of the wrong sign), and from 1.5 s
 //   after the step on every published R1 is within 5 % of the new truth (~3 sigma of one
-//   window). Measured (seed 3): the window holding the step reads +95 % (lqr) / +63 % (pid),
-//   the next ones +20-26 %. Before the coil rows' offsets were tied to the bias current and
-//   voltage (amb1dof_recursive_pem.hpp) R1 read -88 % to -94 % for 0.5-1 s after such a step.
+//   window). Measured (seed 3; R1 against the new truth, the windows held about a theta
+//   unless "plain": published from the plain RPEM beside them, see continuous_estimator.hpp):
+//   the window holding the step +63 % (lqr, plain) / +37 % (pid, plain), the next ones
+//   -1.6..+5.5 % (lqr) / +0.8..+5.0 % (pid; the PID loop re-settles for ~2 s). Before the coil rows' offsets were tied
+//   to the bias current and voltage (amb1dof_recursive_pem.hpp) R1 read -88 % to -94 % for 0.5-1 s after such a step.
 // - The stack's swap (scripts/run.sh): the nominal record, then a record of the faulty bearing
 //   from rest at the nominal operating point, its first 0.25 s dropped (the daemon's settle) and
-//   a gap: the same two checks. Measured (seeds 5, 6): the first window after the swap +8.5 %
-//   (lqr) / +14 % (pid), then +18-22 % (+11 % / +7 % before theta was held for the predictor's
-//   warm-up after a restart). It read R1 -74 % in the running stack.
+//   a gap: the same two checks. Measured (seeds 5, 6; against the hot truth): the first window
+//   after the swap -8.8 % (lqr) / -3.9 % (pid; plain: a gap), then -0.3..+2.3 % / +1.1..+1.5 %.
+//   It read R1 -74 % in the running stack before theta was held for the predictor's warm-up
+//   after a restart.
 #include <gtest/gtest.h>
 
 #include <algorithm>

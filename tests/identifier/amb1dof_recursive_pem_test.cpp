@@ -163,7 +163,8 @@ TEST(RecursivePem, SigmaMatchesTheScatterOverSeeds) {
   }
 }
 
-// A record of another plant family, or without the nominal parameters, is refused by name.
+// A record of another plant family, or without the nominal parameters, is refused by name; so
+// are per-window calls without per-window estimates and a follow threshold that is not > 0.
 TEST(RecursivePem, RefusesWhatItCannotIdentify) {
   const Amb1dofRecord record = testing::simulate_amb1dof_record(testing::noisy_record("lqr", 0.2, 1));
   Experiment other = record.experiment;
@@ -173,6 +174,9 @@ TEST(RecursivePem, RefusesWhatItCannotIdentify) {
   EXPECT_THROW(recursive.add(other), Error);
   EXPECT_FALSE(recursive.started());
   EXPECT_THROW(RecursiveIdentification({.forgetting = 1.5}), Error);
+  EXPECT_THROW(recursive.begin_window(0.1), Error);
+  EXPECT_THROW(recursive.end_window(), Error);
+  EXPECT_THROW(RecursiveIdentification({.window_estimates = true, .follow_surprise = 0.0}), Error);
 }
 
 // Bierman's update of U D U' is the covariance update it replaces: P - P h h' P / (h' P h + r)

@@ -198,12 +198,12 @@ TEST(StackMalformed, IdentifierRefusesAnUnknownMethodAtStart) {
 
 // The continuous estimator's keys belong to rpem; on a batch method they are refused by name.
 TEST(StackMalformed, IdentifierRefusesRecursiveKeysForABatchMethod) {
-  const auto dir = cli_test::fresh_dir("stack_batch_window_estimates");
-  std::ofstream(dir / "identifier.json") << R"({"method": "pem", "window_estimates": true})";
+  const auto dir = cli_test::fresh_dir("stack_batch_carry");
+  std::ofstream(dir / "identifier.json") << R"({"method": "pem", "carry": 0.5})";
   const CommandResult r =
       run_ambid("daemon identifier --dds cyclone --domain 196 --config " + (dir / "identifier.json").string());
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_THAT(r.output, ::testing::HasSubstr("window_estimates are for method rpem only"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("publish_rate, forgetting and carry are for method rpem only"));
 }
 
 }  // namespace stack_malformed_test
