@@ -60,9 +60,10 @@
 // "findings"), plus these additive ones: per finding "round" (1-based search round; later
 // rounds are fitted on top of the effects taken before), "significant", "accepted",
 // "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below),
-// "head_to_head" [{effect, channel, z_over_it, z_it_over_this}] (a significant finding whose
-// residual passes the check against every other such one of its round, audit_rivals.hpp; empty
-// otherwise); the
+// "head_to_head" [{effect, channel, z_over_it, z_it_over_this, one_step_z_over_it,
+// one_step_z_it_over_this}] (a significant finding whose residual passes the check against
+// every other such one of its round, audit_rivals.hpp, the one-step z's null for a family
+// without one-step predictions; empty otherwise); the
 // nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
 // excited_bins, p_value, consistent, null_replicas, outputs: {"y": {coherence_mean, coherence_z,
@@ -77,6 +78,7 @@
 // record and in each segment), which no fit, score or statistic counts (NRMSE, the fits'
 // residuals, z, the residual check's windows, the correlation with r, the spectra, the FRF
 // ratio's and the amplitude dependence's Welch segments).
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -133,6 +135,8 @@ struct RivalTest {
   int channel = 0;
   double z_over = 0.0;   // this finding over the rival
   double z_under = 0.0;  // the rival over this finding
+  // The same on the family's one-step predictions (audit_rivals.hpp); NaN when it has none.
+  double z_one_step_over = NAN, z_one_step_under = NAN;
 };
 
 struct AuditFinding {

@@ -96,9 +96,12 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
     s << "; coil " << f.effect.channel << " force factor K" << f.effect.channel << " x " << 1.0 + f.effect.at("dratio");
   s << "; nominal residual |correlation| with r up to " << correlation.maxCoeff();
   s << "; validation improvement z = " << f.test.z << " (accepted above " << f.z_threshold << ")";
-  for (const RivalTest& rival : f.rivals)
+  for (const RivalTest& rival : f.rivals) {
     s << "; over " << rival.effect << (rival.channel ? " (channel " + std::to_string(rival.channel) + ")" : "")
       << " z = " << rival.z_over << ", it over this z = " << rival.z_under;
+    if (!std::isnan(rival.z_one_step_over))
+      s << " (one-step: " << rival.z_one_step_over << ", " << rival.z_one_step_under << ")";
+  }
   if (f.significant)
     for (const FoilFinding& foil : r.foils)
       s << "; out of the catalogue, " << foil.name << " " << foil.value << " " << foil.unit << " at z = " << foil.test.z
@@ -212,31 +215,42 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
 
 // The significant finding of `scored` (best score first) to take (audit_rivals.hpp), each
 // rival given its head-to-head tests; end() when none is significant.
-std::vector<Scored>::iterator take_among_rivals(const AuditResult& r, std::vector<Scored>& scored,
+std::vector<Scored>::iterator take_among_rivals(const Experiment& measured, const AuditResult& r,
+                                                const std::vector<sim::Effect>& base, std::vector<Scored>& scored,
                                                 const AuditOptions& options) {
   // The rivals: the significant findings whose residual passes the check (the head-to-head
   // test assumes one of the two is right); when none does (a second effect is still missing),
   // the best score decides.
   std::vector<std::size_t> significant;
   std::vector<const Eigen::MatrixXd*> replays;
+  std::vector<OneStepPrediction> one_step;
   for (std::size_t i = 0; i < scored.size(); ++i)
     if (scored[i].finding.significant && scored[i].finding.residual.consistent) {
       significant.push_back(i);
       replays.push_back(&scored[i].loop.y);
+      std::vector<sim::Effect> effects = base;
+      effects.push_back(scored[i].finding.effect);
+      one_step.push_back(audit_one_step_prediction(measured, effects));
     }
   if (significant.empty())
     return std::find_if(scored.begin(), scored.end(), [](const Scored& s) { return s.finding.significant; });
+  if (one_step.front().predicted.size() == 0) one_step.clear();  // the family has none
   if (options.progress) options.progress("test the significant findings head to head", 0, 1);
   const RivalChoice choice =
-      choose_among_rivals(r.measured, replays, r.validation, options.covariance_lags, options.rival_margin);
+      choose_among_rivals(r.measured, replays, r.validation, options.covariance_lags, options.rival_margin, one_step);
   for (std::size_t a = 0; a < significant.size(); ++a) {
     AuditFinding& f = scored[significant[a]].finding;
     f.rival_losses = choice.losses[a];
     for (std::size_t b = 0; b < significant.size(); ++b)
       if (a != b) {
         const sim::Effect& rival = scored[significant[b]].finding.effect;
-        f.rivals.push_back({rival.name, rival.channel, choice.z(Eigen::Index(a), Eigen::Index(b)),
-                            choice.z(Eigen::Index(b), Eigen::Index(a))});
+        const auto i = Eigen::Index(a), j = Eigen::Index(b);
+        RivalTest t{rival.name, rival.channel, choice.z(i, j), choice.z(j, i)};
+        if (choice.z_one_step.size()) {
+          t.z_one_step_over = choice.z_one_step(i, j);
+          t.z_one_step_under = choice.z_one_step(j, i);
+        }
+        f.rivals.push_back(t);
       }
   }
   return scored.begin() + std::ptrdiff_t(significant[choice.pick]);
@@ -315,7 +329,7 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     // Of the significant findings whose residual passes the check, the one the fewest others
     // beat head to head (audit_rivals.hpp; ties: the best score, z less the complexity
     // penalty); when none passes, the best score. Put first.
-    auto pick = take_among_rivals(r, scored, options);
+    auto pick = take_among_rivals(measured, r, taken, scored, options);
     if (pick != scored.end()) {
       std::rotate(scored.begin(), pick, pick + 1);
       pick = scored.begin();
@@ -406,10 +420,15 @@ nlohmann::json check_json(const ResidualCheck& c, const AuditResult& r) {
 nlohmann::json rivals_json(const AuditFinding& f) {
   nlohmann::json rivals = nlohmann::json::array();
   for (const RivalTest& rival : f.rivals)
-    rivals.push_back({{"effect", rival.effect},
-                      {"channel", rival.channel ? nlohmann::json(rival.channel) : nlohmann::json(nullptr)},
-                      {"z_over_it", rival.z_over},
-                      {"z_it_over_this", rival.z_under}});
+    rivals.push_back(
+        {{"effect", rival.effect},
+         {"channel", rival.channel ? nlohmann::json(rival.channel) : nlohmann::json(nullptr)},
+         {"z_over_it", rival.z_over},
+         {"z_it_over_this", rival.z_under},
+         {"one_step_z_over_it",
+          std::isnan(rival.z_one_step_over) ? nlohmann::json(nullptr) : nlohmann::json(rival.z_one_step_over)},
+         {"one_step_z_it_over_this",
+          std::isnan(rival.z_one_step_under) ? nlohmann::json(nullptr) : nlohmann::json(rival.z_one_step_under)}});
   return rivals;
 }
 
