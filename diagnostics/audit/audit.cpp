@@ -113,6 +113,10 @@ std::string describe(const AuditFinding& f, const AuditResult& r, const Eigen::V
   return s.str();
 }
 
+// The z by which one rival beats another: the larger of the replay's and the one-step
+// prediction's (NaN: none), as audit_rivals.hpp decides.
+double deciding_z(double replay, double one_step) { return std::isnan(one_step) ? replay : std::max(replay, one_step); }
+
 // A fitted finding with its replay over the whole record.
 struct Scored {
   AuditFinding finding;
@@ -269,6 +273,8 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     throw Error("audit: foil_margin must be finite, got " + std::to_string(options.foil_margin));
   if (!std::isfinite(options.rival_margin))
     throw Error("audit: rival_margin must be finite, got " + std::to_string(options.rival_margin));
+  if (!(options.ambiguity_ratio > 0.0 && options.ambiguity_ratio <= 1.0))
+    throw Error("audit: ambiguity_ratio must be in (0, 1], got " + std::to_string(options.ambiguity_ratio));
   if (options.max_effects < 1 || options.max_effects > 3)
     throw Error("audit: max_effects must be 1 to 3, got " + std::to_string(options.max_effects));
   if (options.rounding_replicas < 1)
@@ -360,6 +366,12 @@ AuditResult run_audit(const Experiment& measured, const AuditOptions& options) {
     for (std::size_t i : taken_findings) {
       r.findings[i].accepted = true;
       r.causes.push_back(r.findings[i].effect.name);
+      for (const RivalTest& rival : r.findings[i].rivals) {
+        const double over = deciding_z(rival.z_over, rival.z_one_step_over),
+                     under = deciding_z(rival.z_under, rival.z_one_step_under);
+        if (!(over > options.rival_margin && under < options.ambiguity_ratio * over))
+          r.ambiguous_with.push_back({r.findings[i].effect.name, rival.effect, rival.channel, over, under});
+      }
     }
     r.cause = r.causes.front();
     r.extended_effects = taken;
@@ -475,6 +487,13 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
     }
   nlohmann::json unexplained_after = nlohmann::json::array();
   for (const auto& e : r.unexplained_effects) unexplained_after.push_back(effect_json(e));
+  nlohmann::json ambiguous = nlohmann::json::array();
+  for (const auto& a : r.ambiguous_with)
+    ambiguous.push_back({{"cause", a.cause},
+                         {"effect", a.rival},
+                         {"channel", a.channel ? nlohmann::json(a.channel) : nlohmann::json(nullptr)},
+                         {"z_cause_over_it", a.z_over},
+                         {"z_it_over_cause", a.z_under}});
   nlohmann::json foils = nlohmann::json::array();
   for (const auto& f : r.foils)
     foils.push_back({{"mismatch", f.name},
@@ -546,6 +565,7 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
             {"residual_alpha", r.residual_alpha}}},
           {"residual_check", check_json(r.nominal_check, r)},
           {"unexplained_after", unexplained_after},
+          {"ambiguous_with", ambiguous},
           {"out_of_catalogue", foils},
           {"out_of_catalogue_beats_cause",
            r.foil_beats_cause.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.foil_beats_cause)}};

@@ -11,6 +11,7 @@
 // validation NRMSE at least 2x where named (kCutShortOfTwo: the named cases that do not yet):
 //   build/tests/diagnostics_slow_tests --gtest_filter='*MaglevAuditTable*'
 //     --gtest_also_run_disabled_tests | grep MAGLEV-AUDIT   (one command line)
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -37,7 +38,11 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 }
 
 // Every effect (and "none") at every sample time; `named` true: the cases the audit names today
-// (asserted), false: the open ones (below, DISABLED_).
+// (asserted: the cause, or named with it in ambiguous_with, AuditOptions::ambiguity_ratio), false:
+// the open ones (below, DISABLED_). Named with an ambiguous rival: sensor_gain 1.5 ms, sensor_offset
+// 1.5 and 4 ms and sensor_nonlinearity 1.5 ms, each with force_law (z 18.0/16.3, 17.8/14.5,
+// 17.6/16.5, 25.9/17.0 each way: a sensor offset or scale is a force law's exponents to first
+// order at a measured operating point, README).
 // Measured 2026-12-03 (seed 11), cause and cut (baseline / extended NRMSE):
 //   none: none at every rate. force_law 5.59, 5.22, 15.15, 5.63 (every rate).
 //   coil_resistance 1.62, 1.43, 1.89, 1.96 (every rate; at 4 ms since the head to head also
@@ -173,10 +178,15 @@ Audited audit(const SweepCase& c) {
   Audited a{run_audit(testing::maglev_case_record(m, run)), 0.0};
   a.extended = nrmse(a.result.measured, a.result.extended, a.result.validation).mean();
   const AuditFinding* best = a.result.findings.empty() ? nullptr : &a.result.findings.front();
-  std::printf("MAGLEV-AUDIT %-22s %5.2f %3d %-22s %.5f %.5f %6.2f best %-22s %.5f z %.1f\n", c.effect.c_str(),
+  std::string ambiguous;
+  for (const auto& amb : a.result.ambiguous_with)
+    ambiguous += " " + amb.rival + "(" + std::to_string(amb.z_over).substr(0, 4) + "/" +
+                 std::to_string(amb.z_under).substr(0, 4) + ")";
+  std::printf("MAGLEV-AUDIT %-22s %5.2f %3d %-22s %.5f %.5f %6.2f best %-22s %.5f z %.1f%s%s\n", c.effect.c_str(),
               c.ts * 1e3, int(c.seed), a.result.cause.c_str(), a.result.baseline_total, a.extended,
               a.result.baseline_total / a.extended, best ? best->effect.name.c_str() : "-",
-              best ? best->nrmse_total_after : 0.0, best ? best->test.z : 0.0);
+              best ? best->nrmse_total_after : 0.0, best ? best->test.z : 0.0,
+              ambiguous.empty() ? "" : " ambiguous:", ambiguous.c_str());
   return a;
 }
 
@@ -186,7 +196,10 @@ TEST_P(MaglevAuditTable, NamesTheHiddenEffect) {
   const SweepCase& c = GetParam();
   const Audited a = audit(c);
   const std::string evidence = a.result.findings.empty() ? "" : a.result.findings.front().evidence;
-  EXPECT_EQ(a.result.cause, c.effect) << evidence;
+  // The hidden effect is the cause, or named with it as one the record does not separate from it.
+  const bool ambiguous = std::any_of(a.result.ambiguous_with.begin(), a.result.ambiguous_with.end(),
+                                     [&](const AuditResult::Ambiguity& amb) { return amb.rival == c.effect; });
+  EXPECT_TRUE(a.result.cause == c.effect || ambiguous) << a.result.cause << ": " << evidence;
   if (kCutTwice.contains(c.effect)) {
     EXPECT_GE(a.result.baseline_total / a.extended, kCutShortOfTwo.contains(name_of({c, 0})) ? 1.9 : 2.0) << evidence;
   }
