@@ -64,8 +64,9 @@
 // "head_to_head" [{effect, channel, z_over_it, z_it_over_this, one_step_z_over_it,
 // one_step_z_it_over_this}] (a significant finding whose residual passes the check against
 // every other such one of its round, audit_rivals.hpp, the one-step z's null for a family
-// without one-step predictions; empty otherwise); the
-// nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
+// without one-step predictions; empty otherwise); "refuted_by" ({effect, one_step_z_over_this,
+// one_step_z_this_over_it} or null, AuditFinding::refuted_by); the nominal model's
+// "residual_check"; "unexplained_after" (the effects taken provisionally when
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
 // excited_bins, p_value, consistent, null_replicas, outputs: {"y": {coherence_mean, coherence_z,
 // coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
@@ -162,6 +163,12 @@ struct AuditFinding {
   bool accepted = false;
   std::vector<RivalTest> rivals;  // a significant finding whose residual passes: against the others
   int rival_losses = 0;           // how many of them beat it head to head
+  // Taken: a significant finding of its round whose residual failed the check but whose one-step
+  // prediction (audit_rivals.hpp) beats this one's as a cause beats an ambiguous rival
+  // (AuditOptions::ambiguity_ratio): the record refutes this model's equation, so the audit
+  // names no cause (unexplained). Empty when none does; z both ways.
+  std::string refuted_by;
+  double refuted_z = 0.0, refuted_z_back = 0.0;
   std::string evidence;
 };
 

@@ -97,8 +97,8 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 //   mass enters only through the back-EMF constant (gravity balance closes the force: the
 //   mechanical row g (1 - (i/i0)^n_i (x0/x)^n_x) holds no m); the back-EMF is Ke x'/x^4 = 0.38 V
 //   per m/s, a few mV at the steps' speeds, below the replay's 0.15 V rms command floor.
-// - amplifier_gain reads as sensor_nonlinearity at 1.3 ms (cut 1.17; coil_resistance at 1.5 ms,
-//   1.65, before the one-step prediction).
+// - amplifier_gain at 1.3 ms: "unexplained" (kUnexplainedToday; it read sensor_nonlinearity, cut
+//   1.17; coil_resistance at 1.5 ms, 1.65, before the one-step prediction).
 // - sensor_offset reads as force_law at 1.3 ms (cut 1.30, force_law over it z 8.4, it back 3.0;
 //   amplifier_gain at 1.5 ms, 1.26, before the one-step prediction); sensor_gain reads as
 //   force_law at 4 ms (1.33; its own fit reaches dgain 0.009 of the true 0.04) and at 3.25 ms
@@ -141,6 +141,13 @@ const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "sensor_delay_1500us_seed11",
                                            "sensor_delay_3250us_seed11"};
 
+// Open cases where the audit names no cause rather than a wrong one (asserted "unexplained"):
+// amplifier_gain at 1.3 ms (the gain's own finding, dkw 0.100 of the true 0.1, fails the residual
+// check at p 0.006; sensor_nonlinearity, which keeps the nominal coil, passes and was named until
+// the gain's one-step current prediction refuted it, AuditFinding::refuted_by) and sensor_delay
+// at 4 ms (below).
+const std::set<std::string> kUnexplainedToday = {"amplifier_gain_1300us_seed11", "sensor_delay_4000us_seed11"};
+
 // The effects, whose named cases must cut the validation NRMSE at least 2x.
 const std::set<std::string> kCutTwice = {"sensor_nonlinearity", "force_law", "actuator_quantisation", "sensor_delay"};
 // Named cases of those short of 2x (open, above): their cut asserted above 1.9.
@@ -154,7 +161,8 @@ std::vector<SweepCase> cases(bool named) {
   for (const auto& effect : effects)
     for (const double ts : {1.3e-3, 1.5e-3, 3.25e-3, 4e-3}) {
       const SweepCase c{effect, ts, 11u};
-      if (kNamedToday.contains(name_of({c, 0})) == named) out.push_back(c);
+      const std::string name = name_of({c, 0});
+      if ((kNamedToday.contains(name) || kUnexplainedToday.contains(name)) == named) out.push_back(c);
     }
   return out;
 }
@@ -206,6 +214,10 @@ class MaglevAuditTable : public ::testing::TestWithParam<SweepCase> {};
 TEST_P(MaglevAuditTable, NamesTheHiddenEffect) {
   const SweepCase& c = GetParam();
   const Audited a = audit(c);
+  if (kUnexplainedToday.contains(name_of({c, 0}))) {
+    EXPECT_EQ(a.result.cause, "unexplained");
+    return;
+  }
   const std::string evidence = a.result.findings.empty() ? "" : a.result.findings.front().evidence;
   // The hidden effect is the cause, or named with it as one the record does not separate from it.
   const bool ambiguous = std::any_of(a.result.ambiguous_with.begin(), a.result.ambiguous_with.end(),
