@@ -52,7 +52,8 @@
 // catalogue cause is named with probability at most `false_acceptance` and "unexplained" with at most `residual_alpha`;
 // with one right effect, a false second one is added with probability at most `false_acceptance`. Besides: the plant
 // FRF ratio measured / model (audit_frf.hpp), the nominal residual's correlation with each excitation, and its
-// dependence on amplitude (audit_amplitude.hpp). audit.json adds "out_of_catalogue" [{mismatch, unit, value, z,
+// dependence on amplitude (audit_amplitude.hpp). audit.json adds "ambiguous_with" [{cause, effect, channel,
+// z_cause_over_it, z_it_over_cause}] (AuditResult::ambiguous_with), "out_of_catalogue" [{mismatch, unit, value, z,
 // cause_over_it_z, nrmse2_reduction}] (the foils) and "out_of_catalogue_beats_cause" (the foil's name, or null).
 //
 // audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
@@ -60,10 +61,12 @@
 // "findings"), plus these additive ones: per finding "round" (1-based search round; later
 // rounds are fitted on top of the effects taken before), "significant", "accepted",
 // "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below),
-// "head_to_head" [{effect, channel, z_over_it, z_it_over_this}] (a significant finding whose
-// residual passes the check against every other such one of its round, audit_rivals.hpp; empty
-// otherwise); the
-// nominal model's "residual_check"; "unexplained_after" (the effects taken provisionally when
+// "head_to_head" [{effect, channel, z_over_it, z_it_over_this, one_step_z_over_it,
+// one_step_z_it_over_this}] (a significant finding whose residual passes the check against
+// every other such one of its round, audit_rivals.hpp, the one-step z's null for a family
+// without one-step predictions; empty otherwise); "refuted_by" ({effect, one_step_z_over_this,
+// one_step_z_this_over_it} or null, AuditFinding::refuted_by); the nominal model's
+// "residual_check"; "unexplained_after" (the effects taken provisionally when
 // cause is unexplained); "residual_check" objects are {determinable, reason, window, windows,
 // excited_bins, p_value, consistent, null_replicas, outputs: {"y": {coherence_mean, coherence_z,
 // coherence_p}}} (coherence_mean: mean multiple coherence with r over the excited bins, p / K
@@ -77,6 +80,7 @@
 // record and in each segment), which no fit, score or statistic counts (NRMSE, the fits'
 // residuals, z, the residual check's windows, the correlation with r, the spectra, the FRF
 // ratio's and the amplitude dependence's Welch segments).
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <string>
@@ -123,6 +127,15 @@ struct AuditOptions {
   // (audit_rivals.hpp): a right finding is displaced by a given wrong one with probability at
   // most P(N(0, 1) > rival_margin).
   double rival_margin = 3.0;
+  // A rival of an accepted effect is named with it (AuditResult::ambiguous_with) unless the
+  // cause beats it by z > rival_margin and by more than 1 / ambiguity_ratio times the rival's z
+  // over the cause; in (0, 1]. The head to head's z are not N(0, 1) under the right model on rig
+  // records (the replay's rounding floor): on the maglev table the right effect over a wrong one
+  // that differs physically read z 3.0-1218 and the wrong one back 0.05-0.15 of that (one pair
+  // 0.66: sensor_nonlinearity over force_law at 1.5 ms), while effects that a measured operating
+  // point makes equal to first order (a sensor offset or gain and a force law's exponents)
+  // read 0.75-0.91 of it both ways.
+  double ambiguity_ratio = 0.5;
   FitOptions fit;
 };
 
@@ -133,6 +146,8 @@ struct RivalTest {
   int channel = 0;
   double z_over = 0.0;   // this finding over the rival
   double z_under = 0.0;  // the rival over this finding
+  // The same on the family's one-step predictions (audit_rivals.hpp); NaN when it has none.
+  double z_one_step_over = NAN, z_one_step_under = NAN;
 };
 
 struct AuditFinding {
@@ -148,6 +163,12 @@ struct AuditFinding {
   bool accepted = false;
   std::vector<RivalTest> rivals;  // a significant finding whose residual passes: against the others
   int rival_losses = 0;           // how many of them beat it head to head
+  // Taken: a significant finding of its round whose residual failed the check but whose one-step
+  // prediction (audit_rivals.hpp) beats this one's as a cause beats an ambiguous rival
+  // (AuditOptions::ambiguity_ratio): the record refutes this model's equation, so the audit
+  // names no cause (unexplained). Empty when none does; z both ways.
+  std::string refuted_by;
+  double refuted_z = 0.0, refuted_z_back = 0.0;
   std::string evidence;
 };
 
@@ -159,13 +180,22 @@ struct AuditResult {
   std::vector<AuditFinding> findings;  // fitted candidates by round; in each, the one taken first, then by score
   std::string cause = "none";          // the first of `causes`, "none" or "unexplained"
   std::vector<std::string> causes;     // every accepted effect in the order accepted
-  double false_acceptance = 0.0;       // AuditOptions::false_acceptance
-  double z_threshold = 0.0;            // the z a finding of the first round needed to be accepted
-  double residual_alpha = 0.0;         // AuditOptions::residual_alpha
-  ResidualCheck nominal_check;         // the nominal model's validation residual against noise
-  Segment estimation, validation;      // both leave out the samples where a controller clamp acted
-  Eigen::Index clamped_samples = 0;    // of the record (controller.output_limits, state_limits)
-  bool rounded = false;                // the record is logged at a coarse resolution (audit_rounding.hpp)
+  // Rivals of an accepted effect that the head to head does not separate from it
+  // (AuditOptions::ambiguity_ratio): the record names them as much as the cause (audit.json
+  // "ambiguous_with").
+  struct Ambiguity {
+    std::string cause, rival;
+    int channel = 0;                     // the rival's
+    double z_over = 0.0, z_under = 0.0;  // the cause over the rival and back, the deciding z's
+  };
+  std::vector<Ambiguity> ambiguous_with;
+  double false_acceptance = 0.0;     // AuditOptions::false_acceptance
+  double z_threshold = 0.0;          // the z a finding of the first round needed to be accepted
+  double residual_alpha = 0.0;       // AuditOptions::residual_alpha
+  ResidualCheck nominal_check;       // the nominal model's validation residual against noise
+  Segment estimation, validation;    // both leave out the samples where a controller clamp acted
+  Eigen::Index clamped_samples = 0;  // of the record (controller.output_limits, state_limits)
+  bool rounded = false;              // the record is logged at a coarse resolution (audit_rounding.hpp)
   // For the report: deviations of the measurement and of the replayed models (the extended
   // one is the nominal one when the cause is none), residual spectra on the validation
   // segment, |correlation| of each nominal residual with each excitation (outputs x r).

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "diagnostics/audit/maglev_coil_equation.hpp"
 #include "diagnostics/audit/maglev_dac_replay.hpp"
 #include "diagnostics/audit/maglev_starts.hpp"
 #include "diagnostics/maglev_fault_signatures.hpp"
@@ -32,13 +33,16 @@ const MonitoredFamily* find_monitored(std::string_view model) {
   return it == families.end() ? nullptr : &*it;
 }
 
-// The families whose audit reads starting values, or inputs of the replay, from the record.
+// The families whose audit reads starting values, inputs of the replay, or one-step
+// predictions from the record.
 struct AuditFromData {
   const char* family;
   std::vector<sim::Effect> (*starts)(const Experiment&);
   ReplayInputs (*replay_inputs)(const Experiment&, const std::vector<sim::Effect>&, Eigen::Index);
+  OneStepPrediction (*one_step)(const Experiment&, const std::vector<sim::Effect>&);
 };
-constexpr AuditFromData kAuditFromData[] = {{"maglev1coil_voltage", maglev_audit_starts, maglev_replay_inputs}};
+constexpr AuditFromData kAuditFromData[] = {
+    {"maglev1coil_voltage", maglev_audit_starts, maglev_replay_inputs, maglev_coil_prediction}};
 
 }  // namespace
 
@@ -96,6 +100,12 @@ ReplayInputs audit_replay_inputs(const Experiment& measured, const std::vector<s
     if (measured.plant.model == d.family) return d.replay_inputs(measured, effects, samples);
   const Eigen::Index outputs = measured.controller ? Eigen::Index(measured.controller->outputs.size()) : 0;
   return {effects, Eigen::MatrixXd::Zero(samples, outputs)};
+}
+
+OneStepPrediction audit_one_step_prediction(const Experiment& measured, const std::vector<sim::Effect>& effects) {
+  for (const auto& d : kAuditFromData)
+    if (measured.plant.model == d.family) return d.one_step(measured, effects);
+  return {};
 }
 
 }  // namespace ambid::diag

@@ -68,4 +68,8 @@ std::vector<sim::Effect> audit_starts_from_data(const Experiment& measured);
 ReplayInputs audit_replay_inputs(const Experiment& measured, const std::vector<sim::Effect>& effects,
                                  Eigen::Index samples);
 
+// The one-step prediction of the family's model with `effects` (maglev1coil_voltage: the
+// coil's current, audit/maglev_coil_equation.hpp); empty for a family without.
+OneStepPrediction audit_one_step_prediction(const Experiment& measured, const std::vector<sim::Effect>& effects);
+
 }  // namespace ambid::diag

@@ -195,6 +195,12 @@ void MaglevExtended::advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const
   x.head(continuous_states_) = s;
 }
 
+double MaglevExtended::coil_current_after(double current, double command, double dt) const {
+  const double applied = dac_step_ > 0.0 ? round_to(round_to(command, command_resolution_), dac_step_) : command;
+  const double a = std::exp(-p_.R * dt / p_.L);
+  return a * current + (1.0 - a) * p_.kw * applied / p_.R;
+}
+
 Eigen::VectorXd MaglevExtended::equilibrium_state() const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(continuous_states_ + delay_length_);
   x.head(3) << gap0_, 0.0, current0_;

@@ -64,6 +64,11 @@ class MaglevExtended : public Plant {
   void advance(Eigen::VectorXd& x, const Eigen::VectorXd& u, const Eigen::VectorXd& w, double sample_time,
                int substeps) const override;
 
+  // The coil's current `dt` after `current` with `command` held (through the DAC), the body at
+  // rest (no back-EMF): current a + (1 - a) kw u_dac / R, a = exp(-R dt / L). The audit's
+  // one-step check of the coil (diagnostics/audit/maglev_coil_equation.hpp).
+  double coil_current_after(double current, double command, double dt) const;
+
   // At rest at operating_gap() with the current that holds it; the delay line full of x0.
   Eigen::VectorXd equilibrium_state() const override;
   Eigen::VectorXd equilibrium_input() const override;

@@ -48,6 +48,15 @@ struct ReplayInputs {
   Eigen::MatrixXd input_offset;
 };
 
+// A family's one-step prediction of outputs its model predicts from the record alone, one
+// sample ahead (diagnostics/plant_families.hpp, audit_one_step_prediction): per sample k the
+// logged value at k + 1 (`measured`) and the model's prediction (`predicted`), deviations,
+// samples x predicted outputs; both empty for a family without. The audit's head to head
+// (audit_rivals.hpp) tests rivals on it besides their replays.
+struct OneStepPrediction {
+  Eigen::MatrixXd measured, predicted;
+};
+
 // The same replay with the plant inputs the recorded controller commanded in it (without the
 // input offset).
 struct ReplayedLoop {

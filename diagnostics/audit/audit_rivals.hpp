@@ -39,9 +39,19 @@
 // one the right by at most 1.9. The whitening filter changes the test's power, not its
 // validity (the improvement test estimates the remaining noise covariance itself).
 //
+// A family whose model predicts some output one sample ahead from the record alone
+// (maglev1coil_voltage: the coil's current, maglev_coil_equation.hpp) gives the head to head a
+// second test: the same improvement test on those one-step predictions (their residual is the
+// logged output's own noise for the right model, nearly white: no whitening). Where two rivals
+// predict alike there (effects that leave the equation alone) it ties at z near 0; where the
+// replay cannot tell them (a coil resistance and an amplifier gain at 4 ms: replay z 0.6 either
+// way, one-step current residual 0.016 mA against 0.050 mA rms) it can. A's z over B is the
+// larger of the two tests'.
+//
 // A beats B when z(A over B) > margin and z(A over B) > z(B over A). Under "B is right" the
 // first z is near standard normal (measured: up to 2.6 for one channel of a coil resistance
 // over the other, where the two differ by little), hence AuditOptions::rival_margin 3.
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -55,14 +65,22 @@ namespace ambid::diag {
 constexpr Eigen::Index kWhiteningOrder = 20;
 
 struct RivalChoice {
-  std::size_t pick = 0;     // index into the replays
-  Eigen::MatrixXd z;        // z(a, b): a's validation improvement over b (diagonal 0)
-  std::vector<int> losses;  // per replay: how many others beat it
+  std::size_t pick = 0;        // index into the replays
+  Eigen::MatrixXd z;           // z(a, b): a's validation improvement over b, replays (diagonal 0)
+  Eigen::MatrixXd z_one_step;  // the same on the one-step predictions (empty: none given)
+  std::vector<int> losses;     // per replay: how many others beat it
+  // a's z over b that decides: the larger of z and z_one_step.
+  double deciding(Eigen::Index a, Eigen::Index b) const {
+    return z_one_step.size() ? std::max(z(a, b), z_one_step(a, b)) : z(a, b);
+  }
 };
 
 // `replays`: the significant findings' replayed outputs (deviations, whole record), best score
-// first; `measured`: the measured deviations. Error when `replays` is empty.
+// first; `measured`: the measured deviations. `one_step`: per replay, its model's one-step
+// prediction (OneStepPrediction, audit_replay.hpp), or empty (none: the replays alone decide).
+// Error when `replays` is empty or `one_step` is neither empty nor one per replay.
 RivalChoice choose_among_rivals(const Eigen::MatrixXd& measured, const std::vector<const Eigen::MatrixXd*>& replays,
-                                const Segment& validation, Eigen::Index covariance_lags, double margin);
+                                const Segment& validation, Eigen::Index covariance_lags, double margin,
+                                const std::vector<OneStepPrediction>& one_step = {});
 
 }  // namespace ambid::diag

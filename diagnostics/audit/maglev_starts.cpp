@@ -56,6 +56,14 @@ std::vector<sim::Effect> maglev_audit_starts(const Experiment& measured) {
   // steady current, kw / R = kw' / R_nominal; the validation then tells the two by the coil's
   // pole R / L, which only the resistance moves.
   add("amplifier_gain", {{"dkw", nominal.at("kw") * (nominal.at("R") / fit.physical.at("R") - 1.0)}});
+  // Read in the sensor's distance, the mechanics linearised at the measured point are
+  // y'' = (n_x g / gap0) dy - s (n_i g / i0) di with gap0 = (x0 - offset) / s: an offset reads
+  // as the gap exponent n_x x0 / (x0 - offset), a scale s as both exponents times s. The
+  // replay's cost is rough in these (the followed rounding): from the catalogue's sizes their
+  // fits stopped near where they started (0.2 mm for a 0.3 mm offset).
+  const double x0 = measured.operating_value("x");
+  add("sensor_offset", {{"dy", x0 * (1.0 - nominal.at("n_x") / fit.physical.at("n_x"))}});
+  add("sensor_gain", {{"dgain", fit.physical.at("n_i") / nominal.at("n_i") - 1.0}});
   return starts;
 }
 

@@ -6,7 +6,8 @@
 // (from one of which the two-exponent fit fell into a local minimum that keeps the levels' currents but not the
 // dynamics). Besides: sensor_delay at one and two samples (the catalogue's 3 ms and 0.9 ms lie between the samples of
 // a 1.3 ms rig, where the fit of a whole-sample delay starts on the wrong side of a kink), actuator_quantisation at the
-// step the current reads (audit_quantisation.hpp).
+// step the current reads (audit_quantisation.hpp); sensor_offset and sensor_gain where the grey-box exponents put
+// them (maglev_starts.cpp: an offset or a scale of the sensor reads as the force law's exponents).
 #include <vector>
 
 #include "core/experiment.hpp"

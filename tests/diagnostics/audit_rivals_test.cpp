@@ -117,5 +117,34 @@ TEST(AuditRivals, NoReplayIsAnError) {
   EXPECT_THROW(choose_among_rivals(replay(false), {}, kValidation, 200, 3.0), Error);
 }
 
+// Replays that tie (the same) and one-step predictions that do not: the one whose prediction
+// leaves the measured output's white noise is taken, listed first or second; where the
+// one-step predictions tie too, nothing beats anything.
+TEST(AuditRivals, OneStepPredictionsDecideWhereTheReplaysTie) {
+  const Eigen::MatrixXd y = replay(false), measured = y + coloured_noise(1);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> white(0.0, 0.01);
+  Eigen::MatrixXd truth(kSamples, 1), logged(kSamples, 1), off(kSamples, 1);
+  for (Eigen::Index k = 0; k < kSamples; ++k) {
+    truth(k, 0) = std::sin(2.0 * std::numbers::pi * 0.13 * double(k));
+    logged(k, 0) = truth(k, 0) + white(rng);
+    off(k, 0) = 0.95 * truth(k, 0);  // a gain 5 % off: 0.035 rms against the noise's 0.01
+  }
+  const OneStepPrediction right{logged, truth}, wrong{logged, off};
+  for (const bool right_first : {true, false}) {
+    const RivalChoice c = choose_among_rivals(measured, {&y, &y}, kValidation, 200, 3.0,
+                                              right_first ? std::vector{right, wrong} : std::vector{wrong, right});
+    const Eigen::Index r = right_first ? 0 : 1, w = 1 - r;
+    EXPECT_EQ(c.pick, std::size_t(r));
+    EXPECT_NEAR(c.z(r, w), 0.0, 1e-9);  // the replays tie
+    EXPECT_GT(c.z_one_step(r, w), 20.0);
+    EXPECT_LT(c.z_one_step(w, r), 3.0);
+    EXPECT_EQ(c.losses[std::size_t(w)], 1);
+  }
+  const RivalChoice tie = choose_among_rivals(measured, {&y, &y}, kValidation, 200, 3.0, {right, right});
+  EXPECT_EQ(tie.losses, (std::vector<int>{0, 0}));
+  EXPECT_THROW(choose_among_rivals(measured, {&y, &y}, kValidation, 200, 3.0, {right}), Error);
+}
+
 }  // namespace audit_rivals_test
 }  // namespace ambid::diag

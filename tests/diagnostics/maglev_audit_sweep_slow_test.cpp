@@ -11,6 +11,7 @@
 // validation NRMSE at least 2x where named (kCutShortOfTwo: the named cases that do not yet):
 //   build/tests/diagnostics_slow_tests --gtest_filter='*MaglevAuditTable*'
 //     --gtest_also_run_disabled_tests | grep MAGLEV-AUDIT   (one command line)
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -37,10 +38,19 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 }
 
 // Every effect (and "none") at every sample time; `named` true: the cases the audit names today
-// (asserted), false: the open ones (below, DISABLED_).
+// (asserted: the cause, or named with it in ambiguous_with, AuditOptions::ambiguity_ratio), false:
+// the open ones (below, DISABLED_). Named with an ambiguous rival: sensor_gain 1.5 ms, sensor_offset
+// 1.5 ms and sensor_nonlinearity 1.5 ms, each with force_law (z 18.0/16.3, 24.9/18.6, 25.9/17.0
+// each way); sensor_offset at 3.25 and 4 ms only as force_law's ambiguous rival (21.6/17.2,
+// 15.1/13.4; since sensor_offset starts where the grey-box gap exponent puts it,
+// maglev_starts.cpp): a sensor offset or scale is a force law's exponents to first order at a
+// measured operating point (README).
 // Measured 2026-12-03 (seed 11), cause and cut (baseline / extended NRMSE):
 //   none: none at every rate. force_law 5.59, 5.22, 15.15, 5.63 (every rate).
-//   coil_resistance 1.62, 1.43, 1.89 at 1.3, 1.5, 3.25 ms. amplifier_gain 1.97, 2.43 at 3.25, 4 ms.
+//   coil_resistance 1.62, 1.43, 1.89, 1.96 (every rate; at 4 ms since the head to head also
+//   tests the coil's one-step prediction, maglev_coil_equation.hpp). amplifier_gain 1.57, 1.97,
+//   2.43 at 1.5, 3.25, 4 ms (1.5 ms: the one-step prediction). sensor_offset 1.26 at 1.5 ms (its
+//   one-step prediction beat amplifier_gain's); at 3.25 and 4 ms force_law with it (1.38, 1.28).
 //   sensor_gain 1.12, 1.15 at 1.3, 1.5 ms.
 //   sensor_nonlinearity 2.54, 2.11, 6.75, 6.50 (every rate). harmonic_disturbance 4.37, 3.31, 3.46 at
 //   1.5, 3.25, 4 ms.
@@ -48,41 +58,53 @@ std::string name_of(const ::testing::TestParamInfo<SweepCase>& info) {
 //   from the current; at 1.3 and 1.5 ms named since the replicas' DAC rounds the command as
 //   logged, MaglevExtended: the fitted 0.3502 put its edges between the logged 0.01 V, and the
 //   replicas' misrounded samples, which the record cannot have, failed its residual check).
-//   sensor_delay 2.60 at 1.5 ms (since the residual check measures its null's spread from the
-//   rounding replicas, audit_residual_check.hpp) and 3.38 at 3.25 ms (one sample, on the board
-//   that survives it: audit() below).
+//   sensor_delay 2.05 at 1.3 ms, 2.60 at 1.5 ms (since the residual check measures its null's
+//   spread from the rounding replicas, audit_residual_check.hpp, and the replicas are driven by
+//   the excitation the model implies rather than the record's r, audit_rounding_null.cpp) and
+//   3.38 at 3.25 ms (one sample, on the board that survives it: audit() below).
+//   harmonic_disturbance 4.25 at 1.3 ms and sensor_offset 1.27 at 4 ms (since the replicas'
+//   excitation, as the delay at 1.3 ms).
 // Open, with what the audit says instead:
-// - 4 ms (steps of 0.5 mm between 14 and 16 mm, audit() below): coil_resistance reads as
-//   amplifier_gain (cut 1.98) and sensor_offset and sensor_gain as force_law (1.28, 1.33). With
+// - 4 ms (steps of 0.5 mm between 14 and 16 mm, audit() below): sensor_gain reads as force_law
+//   (1.33; sensor_offset too, 1.28, before the replicas' excitation, audit_rounding_null.cpp, and
+//   coil_resistance as amplifier_gain, 1.98, before the one-step prediction: replay z 0.6 either
+//   way, one-step current residual 0.016 mA for R against 0.050 mA for kw). With
 //   the 1 mm steps of the other rates the loop rang at its clamps after the step toward the coil:
 //   sensor_gain had no record (the top stop), no validation window of 64 samples was free of a
 //   clamp (the residual check not determinable), force_law and harmonic_disturbance read "none"
 //   and sensor_nonlinearity harmonic_disturbance, while coil_resistance and sensor_offset were named.
 // - actuator_quantisation at 1.3 and 1.5 ms: named, but the cut is 1.99 and 1.92: the extended
 //   NRMSE is at the clean record's (0.069, 0.075), the replay's floor (its command leaves the
-//   logged one by 0.15 V rms where the model leaves the logged gap's 0.01 mm band).
-// - sensor_delay at 1.3 ms: "unexplained" (the delay found, 0.99 samples, z 72, cut 2.05): the
-//   residual check rejects it, current coherence 0.119 at z 5.1 against the rounding replicas'
-//   own spread (p 0.0014). It is the rounding's null, not the model: logged at full precision the
-//   true model replays the record to NRMSE 0.0029 and passes (p 0.18), and the audit names the
-//   delay. Under the law of independent windows alone even the true model (delay exactly one
-//   sample) failed (p 5e-10), and the replicas, each checked against the other seven, read z
-//   from -3.6 to +4.5 (clean record: -2.9 to +4.3); their spread named the delay at 1.5 ms.
+//   logged one by 0.15 V rms where the model leaves the logged gap's 0.01 mm band). The true
+//   DAC (0.35 V exactly) cuts 2.01x at 1.3 ms and 1.93x at 1.5 ms: 2x at 1.5 ms needs a lower
+//   floor (logged at full precision the clean floor is x 0.0002, i 0.0056 against 0.0098, 0.127).
+// - (closed) sensor_delay at 1.3 ms was "unexplained" (the delay found, 0.99 samples, z 72, cut
+//   2.05): the residual check rejected even the true model (delay exactly one sample: current
+//   coherence z 4.2, 6.9, 5.1 with 8, 16, 32 replicas). The replicas were driven by the record's
+//   r = u - C y_logged, which holds the controller's answer to the logger's rounding: their plant
+//   carried the record's rounding besides their own. Driven by the logged command less the
+//   controller's answer to the model's replayed output, the true model passes (p 0.08, current z
+//   2.05) and the audit names the delay.
 // - sensor_delay at 4 ms: no board tuning in the note's range replays (Kp 2-3 V/mm, Td 20-30 ms:
 //   the body reaches the ground, or the true model's replay leaves the record, cut 1.41-1.68 with
-//   the command 0.9-1.9 V rms off the logged one); with Kp 3, Td 20 ms it reads "unexplained".
+//   the command 0.9-1.9 V rms off the logged one); with Kp 3, Td 20 ms it reads "unexplained":
+//   the true model (one sample) passes the residual check (p 0.48) and cuts 1.40x on validation,
+//   but on the estimation half (the loop ringing at its clamps) its replay's sum of NRMSE^2 is
+//   1.99 against the nominal's 1.00, so the delay is never among the fitted candidates (its fit
+//   from one sample goes to 0.25 samples); the best ones (sensor_nonlinearity, force_law) fail
+//   the residual check.
 // - rotor_mass (1.5x): "none" (or sensor_offset at 1.3 ms): at a measured operating point the
 //   mass enters only through the back-EMF constant (gravity balance closes the force: the
 //   mechanical row g (1 - (i/i0)^n_i (x0/x)^n_x) holds no m); the back-EMF is Ke x'/x^4 = 0.38 V
 //   per m/s, a few mV at the steps' speeds, below the replay's 0.15 V rms command floor.
-// - amplifier_gain reads as sensor_nonlinearity at 1.3 ms (cut 1.17) and coil_resistance at 1.5 ms
-//   (1.65): both start at the steady current's value (maglev_starts.hpp), and only the coil's
-//   pole R / L tells gain and resistance apart.
-// - sensor_offset reads as force_law at 1.3, 3.25 and 4 ms (cut 1.30, 1.38, 1.28) and as
-//   amplifier_gain at 1.5 ms (1.26; named sensor_offset while the residual check's law of
-//   independent windows rejected amplifier_gain's residual); sensor_gain at 3.25 ms is "none"
+// - amplifier_gain at 1.3 ms: "unexplained" (kUnexplainedToday; it read sensor_nonlinearity, cut
+//   1.17; coil_resistance at 1.5 ms, 1.65, before the one-step prediction).
+// - sensor_offset reads as force_law at 1.3 ms (cut 1.30, force_law over it z 8.4, it back 3.0;
+//   amplifier_gain at 1.5 ms, 1.26, before the one-step prediction); sensor_gain reads as
+//   force_law at 4 ms (1.33; its own fit reaches dgain 0.009 of the true 0.04) and at 3.25 ms
+//   is "none"
 //   (z 18.6 but the NRMSE cut below the rounded record's 10 %); harmonic_disturbance at 1.3 ms
-//   "unexplained" (the residual check).
+//   "unexplained" (the residual check) until the replicas' excitation (above).
 const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "none_1500us_seed11",
                                            "none_3250us_seed11",
@@ -94,6 +116,8 @@ const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "coil_resistance_1300us_seed11",
                                            "coil_resistance_1500us_seed11",
                                            "coil_resistance_3250us_seed11",
+                                           "coil_resistance_4000us_seed11",
+                                           "amplifier_gain_1500us_seed11",
                                            "amplifier_gain_3250us_seed11",
                                            "amplifier_gain_4000us_seed11",
                                            "sensor_gain_1300us_seed11",
@@ -109,8 +133,20 @@ const std::set<std::string> kNamedToday = {"none_1300us_seed11",
                                            "harmonic_disturbance_1500us_seed11",
                                            "harmonic_disturbance_3250us_seed11",
                                            "harmonic_disturbance_4000us_seed11",
+                                           "harmonic_disturbance_1300us_seed11",
+                                           "sensor_offset_1500us_seed11",
+                                           "sensor_offset_3250us_seed11",
+                                           "sensor_offset_4000us_seed11",
+                                           "sensor_delay_1300us_seed11",
                                            "sensor_delay_1500us_seed11",
                                            "sensor_delay_3250us_seed11"};
+
+// Open cases where the audit names no cause rather than a wrong one (asserted "unexplained"):
+// amplifier_gain at 1.3 ms (the gain's own finding, dkw 0.100 of the true 0.1, fails the residual
+// check at p 0.006; sensor_nonlinearity, which keeps the nominal coil, passes and was named until
+// the gain's one-step current prediction refuted it, AuditFinding::refuted_by) and sensor_delay
+// at 4 ms (below).
+const std::set<std::string> kUnexplainedToday = {"amplifier_gain_1300us_seed11", "sensor_delay_4000us_seed11"};
 
 // The effects, whose named cases must cut the validation NRMSE at least 2x.
 const std::set<std::string> kCutTwice = {"sensor_nonlinearity", "force_law", "actuator_quantisation", "sensor_delay"};
@@ -125,7 +161,8 @@ std::vector<SweepCase> cases(bool named) {
   for (const auto& effect : effects)
     for (const double ts : {1.3e-3, 1.5e-3, 3.25e-3, 4e-3}) {
       const SweepCase c{effect, ts, 11u};
-      if (kNamedToday.contains(name_of({c, 0})) == named) out.push_back(c);
+      const std::string name = name_of({c, 0});
+      if ((kNamedToday.contains(name) || kUnexplainedToday.contains(name)) == named) out.push_back(c);
     }
   return out;
 }
@@ -160,10 +197,15 @@ Audited audit(const SweepCase& c) {
   Audited a{run_audit(testing::maglev_case_record(m, run)), 0.0};
   a.extended = nrmse(a.result.measured, a.result.extended, a.result.validation).mean();
   const AuditFinding* best = a.result.findings.empty() ? nullptr : &a.result.findings.front();
-  std::printf("MAGLEV-AUDIT %-22s %5.2f %3d %-22s %.5f %.5f %6.2f best %-22s %.5f z %.1f\n", c.effect.c_str(),
+  std::string ambiguous;
+  for (const auto& amb : a.result.ambiguous_with)
+    ambiguous += " " + amb.rival + "(" + std::to_string(amb.z_over).substr(0, 4) + "/" +
+                 std::to_string(amb.z_under).substr(0, 4) + ")";
+  std::printf("MAGLEV-AUDIT %-22s %5.2f %3d %-22s %.5f %.5f %6.2f best %-22s %.5f z %.1f%s%s\n", c.effect.c_str(),
               c.ts * 1e3, int(c.seed), a.result.cause.c_str(), a.result.baseline_total, a.extended,
               a.result.baseline_total / a.extended, best ? best->effect.name.c_str() : "-",
-              best ? best->nrmse_total_after : 0.0, best ? best->test.z : 0.0);
+              best ? best->nrmse_total_after : 0.0, best ? best->test.z : 0.0,
+              ambiguous.empty() ? "" : " ambiguous:", ambiguous.c_str());
   return a;
 }
 
@@ -172,8 +214,15 @@ class MaglevAuditTable : public ::testing::TestWithParam<SweepCase> {};
 TEST_P(MaglevAuditTable, NamesTheHiddenEffect) {
   const SweepCase& c = GetParam();
   const Audited a = audit(c);
+  if (kUnexplainedToday.contains(name_of({c, 0}))) {
+    EXPECT_EQ(a.result.cause, "unexplained");
+    return;
+  }
   const std::string evidence = a.result.findings.empty() ? "" : a.result.findings.front().evidence;
-  EXPECT_EQ(a.result.cause, c.effect) << evidence;
+  // The hidden effect is the cause, or named with it as one the record does not separate from it.
+  const bool ambiguous = std::any_of(a.result.ambiguous_with.begin(), a.result.ambiguous_with.end(),
+                                     [&](const AuditResult::Ambiguity& amb) { return amb.rival == c.effect; });
+  EXPECT_TRUE(a.result.cause == c.effect || ambiguous) << a.result.cause << ": " << evidence;
   if (kCutTwice.contains(c.effect)) {
     EXPECT_GE(a.result.baseline_total / a.extended, kCutShortOfTwo.contains(name_of({c, 0})) ? 1.9 : 2.0) << evidence;
   }
