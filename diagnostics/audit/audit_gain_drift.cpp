@@ -173,10 +173,9 @@ GainDrift gain_drift_test(const Experiment& measured, const Eigen::MatrixXd& mea
     d.channels.push_back(test_channel(channel, e, S, record, bounds));
   }
   if (d.channels.empty()) return d;
-  const auto best = std::min_element(d.channels.begin(), d.channels.end(),
-                                     [](const GainDriftChannel& a, const GainDriftChannel& b) {
-                                       return a.p_value < b.p_value;
-                                     });
+  const auto best =
+      std::min_element(d.channels.begin(), d.channels.end(),
+                       [](const GainDriftChannel& a, const GainDriftChannel& b) { return a.p_value < b.p_value; });
   d.p_value = std::min(1.0, best->p_value * double(d.channels.size()));
   d.varies = d.p_value < alpha;
   if (d.varies) d.channel = best->channel;

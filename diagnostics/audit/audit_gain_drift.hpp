@@ -7,9 +7,9 @@
 // Method: the record is cut into `segments` + 1 equal parts, the first left out (the start from
 // the operating point, where the replay's sensitivity is largest and any model error shows most:
 // under PID with a fitted eddy current, the first part's gain had a third of the others' standard
-// error and pulled the mean), and, per amplifier, the gain error is fitted in each part alone, linearised about the checked model (its replay y and the replay
-// with that amplifier's gain raised by kProbe, whose difference over kProbe is the sensitivity
-// S): theta_s = <e, S>_s / <S, S>_s, e = y_meas - y. Both are first whitened by the joint
+// error and pulled the mean), and, per amplifier, the gain error is fitted in each part alone, linearised about the
+// checked model (its replay y and the replay with that amplifier's gain raised by kProbe, whose difference over kProbe
+// is the sensitivity S): theta_s = <e, S>_s / <S, S>_s, e = y_meas - y. Both are first whitened by the joint
 // autoregression of the noise (audit_whitening.hpp) fitted to the residual left after a first,
 // unwhitened per-part fit; outputs weighted by the inverse variance of their whitened residual;
 // the standard error of each theta_s from the whitened residual's auto/cross-covariances (lag
@@ -31,10 +31,10 @@
 namespace ambid::diag {
 
 struct GainDriftChannel {
-  int channel = 0;          // 1-based amplifier (0: the family's one amplifier)
-  Eigen::VectorXd gain;     // fitted gain error per part (dkw, V/V), relative to the checked model
-  Eigen::VectorXd se;       // its standard error
-  double q = 0.0, q_p = 1.0;           // heterogeneity chi-square and its upper tail
+  int channel = 0;                      // 1-based amplifier (0: the family's one amplifier)
+  Eigen::VectorXd gain;                 // fitted gain error per part (dkw, V/V), relative to the checked model
+  Eigen::VectorXd se;                   // its standard error
+  double q = 0.0, q_p = 1.0;            // heterogeneity chi-square and its upper tail
   double slope_z = 0.0, slope_p = 1.0;  // trend of the gain over time: z and two-sided p
   double p_value = 1.0;                 // 2 min(q_p, slope_p), at most 1
 };
@@ -44,10 +44,10 @@ struct GainDrift {
   std::string reason;  // why not, when not determinable
   int segments = 0;
   std::vector<GainDriftChannel> channels;
-  double p_value = 1.0;   // smallest channel p times the number of channels, at most 1
-  double alpha = 0.0;     // the test's probability of finding a constant gain varying
-  bool varies = false;    // p_value < alpha
-  int channel = 0;        // the amplifier of the smallest p when it varies
+  double p_value = 1.0;  // smallest channel p times the number of channels, at most 1
+  double alpha = 0.0;    // the test's probability of finding a constant gain varying
+  bool varies = false;   // p_value < alpha
+  int channel = 0;       // the amplifier of the smallest p when it varies
 };
 
 // `measured_y`: the record's deviations; `model_y` the replay of the checked model (the nominal

@@ -30,9 +30,9 @@ Eigen::MatrixXd replay_with_inductance(const Experiment& measured, int channel, 
 double inductance_information(const Experiment& measured, int channel, const Eigen::MatrixXd& truth_y,
                               const Segment& segment) {
   constexpr double kStep = 0.02;
-  const Eigen::MatrixXd S = (replay_with_inductance(measured, channel, kStep) -
-                             replay_with_inductance(measured, channel, -kStep)) /
-                            (2.0 * kStep);
+  const Eigen::MatrixXd S =
+      (replay_with_inductance(measured, channel, kStep) - replay_with_inductance(measured, channel, -kStep)) /
+      (2.0 * kStep);
   const Eigen::MatrixXd noise = measured.y_deviation() - truth_y;
   const NoiseWhitening w = fit_noise_whitening(noise, segment);
   const Eigen::MatrixXd white_noise = w.apply(noise).middleRows(segment.begin, segment.size());
@@ -48,8 +48,7 @@ TEST(AuditInformation, CoilInductanceErrorsOfTheConfusionTableAreBelowTheRecords
   for (std::uint64_t s = 0; s < 3; ++s) {
     std::string what;
     // The draws of AuditIndependentSlow.ConfusionTable's coil_inductance row.
-    const test_support::EffectRecordOptions o =
-        testing::out_of_catalogue_record("coil_inductance", 32000 + s, s, what);
+    const test_support::EffectRecordOptions o = testing::out_of_catalogue_record("coil_inductance", 32000 + s, s, what);
     const Experiment measured = test_support::simulate_effect_record(o);
     const int channel = o.out_of_catalogue.inductance_channel;
     const double truth = o.out_of_catalogue.inductance_error;
