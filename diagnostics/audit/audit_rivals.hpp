@@ -14,8 +14,8 @@
 // (0.801 against 0.819).
 //
 // The head-to-head test is the improvement test (audit_significance.hpp) with the rival's
-// replay as the base, on signals whitened by one joint autoregression of the outputs (order
-// kWhiteningOrder: each output predicted from the past of all outputs and from the outputs
+// replay as the base, on signals whitened by one joint autoregression of the outputs
+// (audit_whitening.hpp: each output predicted from the past of all outputs and from the outputs
 // before it at the same sample), fitted (QR) to the validation residual of the best-scored
 // rival and applied alike to the measurement and every replay: its z is then the evidence in
 // the direction where the two differ, weighted by the noise's own spectrum and with the part
@@ -60,9 +60,6 @@
 #include "diagnostics/audit/audit_replay.hpp"
 
 namespace ambid::diag {
-
-// Order of the autoregression that whitens the noise before the head-to-head tests.
-constexpr Eigen::Index kWhiteningOrder = 20;
 
 struct RivalChoice {
   std::size_t pick = 0;        // index into the replays
