@@ -107,7 +107,9 @@ TEST(StackAtSensorNoise, ATenPercentAmplifierFaultIsAnErrorWithinTenSecondsOfPla
 // disabled: the relaxed per-sample rpem read R1, R2 +1.5 to +2.2 % above the baseline learned
 // in the first 10 s (its bias, not the detectors), and with alerts confirmed over 3 windows it
 // raised 10 WARN/ERROR R1 or R2 steps from 76.7 s on. Measured with the held theta: no alert in
-// 328 s of plant time (623 windows).
+// 328 s of plant time (623 windows) in 5 runs; in 1 of them, at load 4.7 on the 2-core VM, the
+// windows covered 79.7 % of the span (the 80 % check failed: the identifier, two estimators at
+// 10x real time, ~0.47 of a core, fell behind).
 TEST(StackAtSensorNoise, ANominalBearingRaisesNoAlertInFiveMinutesOfPlantTime) {
   Stack stack("stack_noise_nominal", 179);
   configure_noisy_stack(stack, 10.0);
