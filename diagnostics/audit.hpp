@@ -20,13 +20,10 @@
 // (lead-lag), sensor_delay for eddy currents at z 7.9 against 8.3, and an air gap (z 4) before a flexible mode (z 9).
 // A candidate is significant when its validation improvement is beyond what noise explains (audit_significance.hpp: z
 // above the Bonferroni threshold for `false_acceptance` over the fitted candidates) and it
-// lowers nrmse_total. That z is taken on signals whitened by the joint autoregression of the
-// noise (audit_whitening.hpp) fitted to the candidate's own residual on the estimation segment:
-// a fixed filter from data the test does not see, so z stays standard normal under a right base
-// model, and it weighs the difference by the noise's spectrum and takes out the part of each
-// output's noise the others predict (unwhitened, an amplifier bandwidth reached z 2.80 against
-// the threshold 2.88 under the lead-lag loop, whitened 28.8; the ranking score keeps the
-// unwhitened z, with which the head-to-head choice below was measured).
+// lowers nrmse_total. (Tried: that z on signals whitened by the noise's joint autoregression,
+// audit_whitening.hpp, fitted to each candidate's estimation residual: amplifier bandwidth under
+// the lead-lag loop z 2.80 -> 28.8, but 3 of 120 clean records got a catalogue cause at z 3.2-3.8,
+// with or without the unwhitened z > 1.645 as well; not kept.)
 //
 // Residual check (audit_residual_check.hpp): the validation residual of a model is consistent
 // with noise when, per output, the sum over the excited bins of its multiple coherence with r
@@ -71,7 +68,7 @@
 // audit.json has the contract's keys exactly ("causes" [{effect, channel, finding}] in the
 // order accepted, empty unless cause is a catalogue effect; "finding" the index into
 // "findings"), plus these additive ones: per finding "round" (1-based search round; later
-// rounds are fitted on top of the effects taken before), "significant", "accepted", "ranking_z",
+// rounds are fitted on top of the effects taken before), "significant", "accepted",
 // "significance" {z, p_value, nrmse2_reduction, z_threshold}, "residual_check" (below),
 // "head_to_head" [{effect, channel, z_over_it, z_it_over_this, one_step_z_over_it,
 // one_step_z_it_over_this}] (a significant finding whose residual passes the check against
@@ -171,11 +168,8 @@ struct AuditFinding {
   sim::Effect effect;           // fitted; channel 0 means none (null in audit.json)
   Eigen::VectorXd nrmse_after;  // per output, validation segment
   double nrmse_total_before = 0.0, nrmse_total_after = 0.0;
-  double score = 0.0;  // ranking_z less AuditOptions::complexity_penalty per parameter beyond one
-  // Validation improvement against noise (against the previous round's model), on signals
-  // whitened by the noise model of the finding's estimation residual (audit_whitening.hpp).
-  ImprovementTest test;
-  double ranking_z = 0.0;    // the same improvement test unwhitened: the score's z
+  double score = 0.0;        // test.z less AuditOptions::complexity_penalty per parameter beyond one
+  ImprovementTest test;      // validation improvement against noise (against the previous round's model)
   double z_threshold = 0.0;  // the z this finding needed (Bonferroni over its round)
   bool significant = false;  // z above the threshold, reduction > 0, nrmse_total lowered
   ResidualCheck residual;    // the extended model's validation residual against noise

@@ -14,7 +14,6 @@
 #include "diagnostics/audit/audit_rivals.hpp"
 #include "diagnostics/audit/audit_rounding.hpp"
 #include "diagnostics/audit/audit_rounding_null.hpp"
-#include "diagnostics/audit/audit_whitening.hpp"
 #include "diagnostics/plant_families.hpp"
 
 namespace ambid::diag {
@@ -207,17 +206,9 @@ std::vector<Scored> search_round(const Experiment& measured, const AuditResult& 
       continue;  // fitted on one part, it cannot even be simulated over the whole record
     }
     f.nrmse_after = nrmse(r.measured, loop.y, r.validation);
-    // Significance: the improvement test on signals whitened by the noise's joint autoregression
-    // (audit_whitening.hpp), fitted to the candidate's residual on the estimation segment (data
-    // the test does not see; the base model's residual there holds the effect itself: a coil
-    // resistance whose nominal NRMSE was 12.6 came out at z 2.8). The ranking keeps the
-    // unwhitened z (the head-to-head choice and its ties were measured with it).
-    const NoiseWhitening whitening = fit_noise_whitening(r.measured - loop.y, r.estimation);
-    f.test = improvement_test(whitening.apply(r.measured), whitening.apply(base_loop.y), whitening.apply(loop.y),
-                              r.validation, options.covariance_lags);
-    f.ranking_z = improvement_test(r.measured, base_loop.y, loop.y, r.validation, options.covariance_lags).z;
+    f.test = improvement_test(r.measured, base_loop.y, loop.y, r.validation, options.covariance_lags);
     f.nrmse_total_after = total(f.nrmse_after);
-    f.score = f.ranking_z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
+    f.score = f.test.z - options.complexity_penalty * double(fit.effect.parameters.size() - 1);
     f.residual = validation_check(measured, with_base(fit.effect), r.measured - loop.y, r, options);
     scored.push_back({std::move(f), std::move(loop)});
   }
@@ -550,7 +541,6 @@ nlohmann::json audit_json(const AuditResult& r, const std::string& experiment_fi
          {"round", f.round},
          {"significant", f.significant},
          {"accepted", f.accepted},
-         {"ranking_z", f.ranking_z},
          {"significance",
           {{"z", f.test.z},
            {"p_value", f.test.p_value},
