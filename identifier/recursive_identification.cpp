@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
-#include "core/linalg.hpp"
 #include "identifier/families/amb1dof_prediction_error.hpp"
 #include "identifier/families/amb1dof_recursive_pem.hpp"
 #include "identifier/plant_families.hpp"
@@ -24,22 +23,6 @@ LoopSignals amb1dof_signals(const Experiment& e) {
     throw Error(kRpemWho + ": identifies " + kFamily + " only, got plant model '" + e.plant.model + "'");
   const IdentificationFamily* family = find_identification_family(kFamily);
   return loop_signals(e, family->y_names, family->u_names, kRpemWho);
-}
-
-// The batch method's check (amb1dof_prediction_error.cpp, checked_spread): r1 and r2 in
-// lockstep (a chirp or a multisine on both inputs) excite one direction of the two coils only.
-// Measured on the soak (tests/integration/soak_slow_test.cpp, 2026-12-03) before this check:
-// the window estimates of an unchanged bearing read R1, R2 alike 2.5-3.7 % below the baseline
-// for 10-20 s at a time and raised 52 false step alerts; offline (ambid's simulator, LQR, a
-// 0.1 V chirp 5-800 Hz on both inputs) R1, R2 averaged +3 % over 30 s.
-void refuse_lockstep_excitation(const Eigen::MatrixXd& r) {
-  if (r.rows() < 2 || !(r.cwiseAbs().maxCoeff() > 0.0)) return;  // no excitation: the noise drives the loop
-  const Eigen::MatrixXd centred = r.rowwise() - r.colwise().mean();
-  const Eigen::Vector2d power = linalg::symmetric_eigenvalues(centred.transpose() * centred);
-  if (!(power(0) > Amb1dofPredictionErrorOptions{}.min_excitation_ratio * power(1)))
-    throw InsufficientData(kRpemWho + ": r1 and r2 move together (the weaker of their directions carries " +
-                           std::to_string(std::max(power(0), 0.0) / power(1)) +
-                           " of the stronger's power): the excitation cannot tell the two coils apart");
 }
 
 Eigen::Vector3d spread_of(const Eigen::MatrixXd& y) {
@@ -93,7 +76,13 @@ void RecursiveIdentification::add(const Experiment& stretch) {
   if (stretch.samples() == 0) return;
   const LoopSignals s = amb1dof_signals(stretch);
   if (!s.y.allFinite() || !s.u.allFinite()) throw Error(kRpemWho + ": a sample of x, i1, i2, u1 or u2 is not finite");
-  if (options_.window_estimates) refuse_lockstep_excitation(s.r);
+  // The batch method's check: r1 and r2 in lockstep (a chirp or a multisine on both inputs)
+  // excite one direction of the two coils only. Measured on the soak (tests/integration/soak_slow_test.cpp, 2026-12-03)
+  // before this check: the window estimates of an unchanged bearing read R1, R2 alike 2.5-3.7 % below the baseline for
+  // 10-20 s at a time and raised 52 false step alerts; offline (ambid's simulator, LQR, a 0.1 V chirp 5-800 Hz on both
+  // inputs) R1, R2 averaged +3 % over 30 s.
+  if (options_.window_estimates)
+    refuse_lockstep_excitation(s.r, Amb1dofPredictionErrorOptions{}.min_excitation_ratio, kRpemWho);
   const bool same_record = estimator_ && stretch.plant.model == plant_model_ && stretch.sample_time == sample_time_;
   if (!same_record) {
     const Amb1dofNominal nominal = amb1dof_nominal(stretch, kRpemWho);

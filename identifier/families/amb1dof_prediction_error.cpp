@@ -15,6 +15,17 @@
 #include "identifier/time_domain/levenberg_marquardt.hpp"
 
 namespace ambid::ident {
+
+void refuse_lockstep_excitation(const Eigen::MatrixXd& r, double min_ratio, const std::string& who) {
+  if (r.rows() < 2 || !(r.cwiseAbs().maxCoeff() > 0.0)) return;  // no excitation: the noise drives the loop
+  const Eigen::MatrixXd centred = r.rowwise() - r.colwise().mean();
+  const Eigen::Vector2d power = linalg::symmetric_eigenvalues(centred.transpose() * centred);
+  if (!(power(0) > min_ratio * power(1)))
+    throw InsufficientData(who + ": r1 and r2 move together (the weaker of their directions carries " +
+                           std::to_string(std::max(power(0), 0.0) / power(1)) +
+                           " of the stronger's power): the excitation cannot tell the two coils apart");
+}
+
 namespace {
 
 // A v whose one-sigma exceeds half its value is not determined by the data.
@@ -179,12 +190,7 @@ Eigen::Vector3d checked_spread(const Eigen::MatrixXd& y, const Eigen::MatrixXd& 
   // the fit reads it through the model error, with a sigma that does not cover it: in the
   // soak (soak_slow_test.cpp) such windows of an unchanged bearing read R1 +38 % at 1.5-3
   // sigmas, window after window, and raised false step ERRORs.
-  const Eigen::MatrixXd centred = r.rowwise() - r.colwise().mean();
-  const Eigen::Vector2d power = linalg::symmetric_eigenvalues(centred.transpose() * centred);
-  if (!(power(0) > options.min_excitation_ratio * power(1)))
-    throw InsufficientData(kPemWho + ": r1 and r2 move together (the weaker of their directions carries " +
-                           std::to_string(std::max(power(0), 0.0) / power(1)) +
-                           " of the stronger's power): the excitation cannot tell the two coils apart");
+  refuse_lockstep_excitation(r, options.min_excitation_ratio, kPemWho);
   Eigen::Vector3d spread;
   for (Index j = 0; j < 3; ++j) {
     spread(j) = rms(y.col(j).array() - y.col(j).mean());

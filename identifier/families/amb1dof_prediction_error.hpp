@@ -48,6 +48,12 @@
 
 namespace ambid::ident {
 
+// InsufficientData naming `who` when r = [r1, r2] moves in lockstep (a chirp or a multisine on
+// both inputs): the weaker direction of its centred power carries at most `min_ratio` of the
+// stronger's, so one direction of the two coils is driven by the sensor noise alone. A zero or
+// one-sample r passes (its own checks say more).
+void refuse_lockstep_excitation(const Eigen::MatrixXd& r, double min_ratio, const std::string& who);
+
 struct Amb1dofPredictionErrorOptions {
   int max_iterations = 60;       // Levenberg-Marquardt iterations per pass (of two)
   double step_tolerance = 0.05;  // converged: the Gauss-Newton step is below this many standard errors
